@@ -1,0 +1,20 @@
+#pragma once
+// One function per garment-init command; each returns its exit code (command_line.h) and throws
+// UsageError for bad usage and garment::InputError for bad input, which main() turns into exit
+// codes.
+
+#include <string>
+#include <vector>
+
+namespace garment::cli {
+
+struct Command {
+  const char* name;
+  const char* synopsis;  // one line: arguments and options
+  const char* help;      // what it does and prints
+  int (*run)(const std::vector<std::string>& args);
+};
+
+int inspect_command(const std::vector<std::string>& args);
+
+}  // namespace garment::cli

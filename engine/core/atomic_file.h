@@ -1,0 +1,23 @@
+#pragma once
+// Writing files so that the user's work is never destroyed: the contents go to a temporary file in
+// the destination's folder, are flushed to disk, and replace the destination with one rename(2).
+// A failure at any point leaves the previous file as it was.
+
+#include <filesystem>
+#include <functional>
+#include <ostream>
+#include <string_view>
+
+namespace garment {
+
+// Writes `contents` to `path` atomically. Throws std::runtime_error naming the path on failure.
+void write_file_atomically(const std::filesystem::path& path, std::string_view contents);
+
+// Streams into `path` atomically: `write` fills the stream; if it throws, nothing is replaced.
+void write_file_atomically(const std::filesystem::path& path,
+                           const std::function<void(std::ostream&)>& write);
+
+// Reads a whole file; throws InputError naming the path when it cannot be read.
+std::string read_file(const std::filesystem::path& path);
+
+}  // namespace garment
