@@ -72,7 +72,6 @@ Garment build_garment(const Pattern& pattern, const MeshingOptions& options, Obs
   for (std::size_t p = 0; p < piece_count; ++p) {
     const Panel& panel = pattern.panels[p];
     plans[p].outline = build_outline(panel);
-    plans[p].frame = piece_frame(panel, plans[p].outline.signed_area);
     for (const EdgeCurve& curve : plans[p].outline.curves) {
       const double segments = std::ceil(curve.length() / h);
       estimated_vertices += segments;
@@ -81,6 +80,19 @@ Garment build_garment(const Pattern& pattern, const MeshingOptions& options, Obs
     }
     // Vertex density of an equilateral mesh of edge h is 2 / (√3 h²).
     estimated_vertices += 2.0 * std::abs(plans[p].outline.signed_area) / (std::sqrt(3.0) * h * h);
+  }
+  {
+    std::vector<double> signed_areas;
+    std::vector<std::vector<Eigen::Vector2d>> edge_midpoints;
+    for (const PiecePlan& plan : plans) {
+      signed_areas.push_back(plan.outline.signed_area);
+      edge_midpoints.emplace_back();
+      for (const EdgeCurve& curve : plan.outline.curves)
+        edge_midpoints.back().push_back(curve.point(0.5));
+    }
+    const std::vector<PieceFrame> frames = piece_frames(pattern, signed_areas, edge_midpoints);
+    for (std::size_t p = 0; p < piece_count; ++p)
+      plans[p].frame = frames[p];
   }
   if (estimated_vertices > options.vertex_budget)
     throw BudgetError(pattern.source + ": meshing at " + std::to_string(h * 1000.0) +

@@ -138,6 +138,20 @@ Json parse_json(const std::string& text, const Reader& reader) {
     const bool truncated = error.byte >= text.size();
     reader.fail("line " + std::to_string(line) + ", column " + std::to_string(column),
                 std::string(truncated ? "truncated JSON: " : "invalid JSON: ") + reason);
+  } catch (const Json::out_of_range& error) {
+    // Numbers beyond double range ("1e999"): nlohmann names the token but not its position.
+    std::string reason = error.what();
+    std::string place;
+    const auto open = reason.find('\''), close = reason.rfind('\'');
+    if (open != std::string::npos && close > open) {
+      const std::string token = reason.substr(open + 1, close - open - 1);
+      if (const auto at = text.find(token); !token.empty() && at != std::string::npos) {
+        const auto [line, column] = line_and_column(text, at);
+        place = "line " + std::to_string(line) + ", column " + std::to_string(column);
+      }
+    }
+    reader.fail(place, "number out of range: " +
+                           (open != std::string::npos ? reason.substr(open) : reason));
   }
 }
 
