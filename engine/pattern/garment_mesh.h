@@ -59,6 +59,10 @@ struct MeshingOptions {
   int vertex_budget = 400000;
 };
 
+// For every vertex, the smallest vertex id it is joined to by sewing pairs (transitively): vertices
+// with the same representative become one point when the garment is sewn (#V).
+Eigen::VectorXi welded_vertices(const Garment& garment);
+
 // Rest-state area (m²) of each piece's triangles.
 std::vector<double> piece_rest_areas(const Garment& garment);
 
