@@ -62,11 +62,13 @@ std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixX2i& edges, i
 }
 
 std::vector<int> ring_distance(const std::vector<std::vector<int>>& neighbours,
-                               const std::vector<int>& sources, int max_rings) {
+                               const std::vector<int>& sources, int max_rings,
+                               const std::vector<char>* allowed) {
   std::vector<int> distance(neighbours.size(), -1);
+  const auto may_enter = [&](int vertex) { return allowed == nullptr || (*allowed)[vertex]; };
   std::deque<int> queue;
   for (int source : sources) {
-    if (distance[source] == 0) continue;
+    if (!may_enter(source) || distance[source] == 0) continue;
     distance[source] = 0;
     queue.push_back(source);
   }
@@ -75,7 +77,7 @@ std::vector<int> ring_distance(const std::vector<std::vector<int>>& neighbours,
     queue.pop_front();
     if (distance[vertex] >= max_rings) continue;
     for (int next : neighbours[vertex]) {
-      if (distance[next] >= 0) continue;
+      if (distance[next] >= 0 || !may_enter(next)) continue;
       distance[next] = distance[vertex] + 1;
       queue.push_back(next);
     }

@@ -22,8 +22,9 @@ MeshEdges build_mesh_edges(const Eigen::MatrixX3i& triangles, int vertex_count);
 std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixX2i& edges, int vertex_count);
 
 // Breadth-first ring distance from `sources` over `neighbours`, -1 where unreached or farther than
-// max_rings.
+// max_rings. With `allowed` (#V), the walk only enters (and starts from) vertices where it is set.
 std::vector<int> ring_distance(const std::vector<std::vector<int>>& neighbours,
-                               const std::vector<int>& sources, int max_rings);
+                               const std::vector<int>& sources, int max_rings,
+                               const std::vector<char>* allowed = nullptr);
 
 }  // namespace garment
