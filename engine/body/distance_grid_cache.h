@@ -1,0 +1,32 @@
+#pragma once
+// On-disk cache of a body's distance grid, so that the second load of a body is instant. A file
+// is named by a hash of the mesh content and the grid parameters and carries that key, its
+// dimensions and a checksum of its samples: a file that does not match in every respect is
+// ignored (and rebuilt by the caller), never trusted.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "engine/body/body_mesh.h"
+#include "engine/body/distance_grid.h"
+
+namespace garment {
+
+// Hash of the vertex positions, triangles, spacing, margin and the format version.
+std::uint64_t distance_grid_cache_key(const BodyMesh& body, double spacing, double margin);
+
+// "sdf-<16 hex digits>.bin"
+std::string distance_grid_cache_name(std::uint64_t key);
+
+// The grid stored in `file` under `key`, or nothing when the file is absent, truncated, of
+// another key or version, or fails its checksum.
+std::optional<DistanceGrid> read_distance_grid_cache(const std::filesystem::path& file,
+                                                     std::uint64_t key);
+
+// Writes atomically (creating the folder); false when the cache cannot be written.
+bool write_distance_grid_cache(const std::filesystem::path& file, std::uint64_t key,
+                               const DistanceGrid& grid);
+
+}  // namespace garment
