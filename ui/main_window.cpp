@@ -1,17 +1,368 @@
 #include "ui/main_window.h"
 
-#include <QLabel>
+#include <QAction>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QHeaderView>
+#include <QListWidget>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QSettings>
 #include <QSplitter>
+#include <QTableView>
+#include <QToolBar>
+#include <exception>
+
+#include "engine/pattern/pattern.h"
+#include "ui/arrangement_order_list.h"
+#include "ui/avatar_view.h"
+#include "ui/bundled_resources.h"
+#include "ui/pattern_view.h"
+#include "ui/recent_files.h"
 
 namespace garment::ui {
 
+namespace {
+
+bool is_pattern_file(const QString& path) {
+  return QFileInfo(path).suffix().compare("json", Qt::CaseInsensitive) == 0;
+}
+
+bool is_body_file(const QString& path) {
+  return QFileInfo(path).suffix().compare("obj", Qt::CaseInsensitive) == 0;
+}
+
+QStringList dropped_files(const QMimeData* data) {
+  QStringList files;
+  for (const QUrl& url : data->urls())
+    if (url.isLocalFile() &&
+        (is_pattern_file(url.toLocalFile()) || is_body_file(url.toLocalFile())))
+      files << url.toLocalFile();
+  return files;
+}
+
+// Loading a pattern meshes it, which takes a moment on large patterns.
+class BusyCursor {
+ public:
+  BusyCursor() { QApplication::setOverrideCursor(Qt::WaitCursor); }
+  ~BusyCursor() { QApplication::restoreOverrideCursor(); }
+  BusyCursor(const BusyCursor&) = delete;
+  BusyCursor& operator=(const BusyCursor&) = delete;
+};
+
+}  // namespace
+
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
-  setWindowTitle(tr("garment-studio"));
-  auto* splitter = new QSplitter(this);
-  splitter->addWidget(new QLabel(tr("Pattern"), splitter));
-  splitter->addWidget(new QLabel(tr("Avatar"), splitter));
-  setCentralWidget(splitter);
-  resize(1280, 800);
+  setObjectName("main_window");
+  pattern_view_ = new PatternView(this);
+  avatar_view_ = new AvatarView(this);
+  splitter_ = new QSplitter(Qt::Horizontal, this);
+  splitter_->setObjectName("views");
+  splitter_->addWidget(pattern_view_);
+  splitter_->addWidget(avatar_view_);
+  splitter_->setStretchFactor(0, 1);
+  splitter_->setStretchFactor(1, 1);
+  splitter_->setChildrenCollapsible(false);
+  setCentralWidget(splitter_);
+
+  status_bar_ = new ArrangementStatusBar(this);
+  setStatusBar(status_bar_);
+  createDocks();
+  createActions();
+  setAcceptDrops(true);
+
+  connect(pattern_view_, &PatternView::pieceSelectionChanged, this, [this](const QList<int>& p) {
+    avatar_view_->setSelectedPieces(p);
+    emit pieceSelectionChanged(p);
+  });
+  connect(avatar_view_, &AvatarView::pieceSelectionChanged, this, [this](const QList<int>& p) {
+    pattern_view_->setSelectedPieces(p);
+    emit pieceSelectionChanged(p);
+  });
+
+  error_presenter_ = [this](const QString& title, const QString& message) {
+    QMessageBox::critical(this, title, message);
+  };
+  resize(1440, 900);
+  splitter_->setSizes({500, 600});
+  restoreSettings();
+  updateTitle();
+}
+
+void MainWindow::createDocks() {
+  setDockNestingEnabled(true);
+  auto add_dock = [this](const QString& title, const QString& name, QWidget* widget) {
+    auto* dock = new QDockWidget(title, this);
+    dock->setObjectName(name);
+    dock->setWidget(widget);
+    addDockWidget(Qt::RightDockWidgetArea, dock);
+    return dock;
+  };
+
+  classifier_model_ = new ClassifierTableModel(this);
+  classifier_table_ = new QTableView(this);
+  classifier_table_->setModel(classifier_model_);
+  classifier_table_->setSelectionBehavior(QAbstractItemView::SelectRows);
+  classifier_table_->verticalHeader()->hide();
+  classifier_table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  add_dock(tr("Seeding classifier"), "classifier_dock", classifier_table_);
+
+  location_list_ = new QListWidget(this);
+  location_list_->setSelectionMode(QAbstractItemView::SingleSelection);
+  connect(location_list_, &QListWidget::currentRowChanged, this, [this](int row) {
+    avatar_view_->setHighlightedLocation(row);
+    emit bodyLocationSelected(row);
+  });
+  add_dock(tr("Body locations"), "locations_dock", location_list_);
+
+  order_list_ = new ArrangementOrderList(this);
+  connect(order_list_, &ArrangementOrderList::orderChanged, this,
+          &MainWindow::arrangementOrderChanged);
+  add_dock(tr("Arrangement order"), "order_dock", order_list_);
+}
+
+void MainWindow::createActions() {
+  QMenu* file_menu = menuBar()->addMenu(tr("&File"));
+  QAction* open_pattern = file_menu->addAction(tr("Open &pattern…"), this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open pattern"),
+                                                      QFileInfo(pattern_path_).absolutePath(),
+                                                      tr("GarmentCode patterns (*.json)"));
+    if (!path.isEmpty()) openPattern(path);
+  });
+  open_pattern->setShortcut(QKeySequence::Open);
+  QAction* open_body = file_menu->addAction(tr("Open &body…"), this, [this] {
+    const QString path = QFileDialog::getOpenFileName(
+        this, tr("Open body"), QFileInfo(body_path_).absolutePath(), tr("Body meshes (*.obj)"));
+    if (!path.isEmpty()) openBody(path);
+  });
+  open_body->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
+  recent_menu_ = file_menu->addMenu(tr("Open &recent"));
+  connect(recent_menu_, &QMenu::aboutToShow, this, &MainWindow::rebuildRecentFilesMenu);
+  rebuildRecentFilesMenu();
+  file_menu->addSeparator();
+
+  // Export needs the arranged garment (the session) and the writers (engine/io): disabled until
+  // the session integration connects them.
+  session_actions_.export_obj = file_menu->addAction(tr("Export &OBJ…"));
+  session_actions_.export_obj->setShortcut(QKeySequence(tr("Ctrl+E")));
+  session_actions_.export_glb = file_menu->addAction(tr("Export &GLB…"));
+  session_actions_.export_report = file_menu->addAction(tr("Export quality &report…"));
+  file_menu->addSeparator();
+  QAction* quit = file_menu->addAction(tr("&Quit"), this, &QWidget::close);
+  quit->setShortcut(QKeySequence::Quit);
+
+  view_menu_ = menuBar()->addMenu(tr("&View"));
+  QAction* frame_all = view_menu_->addAction(tr("&Frame all"), this, [this] {
+    pattern_view_->frameAll();
+    avatar_view_->frameAll();
+  });
+  frame_all->setShortcut(QKeySequence(Qt::Key_F));
+  view_menu_->addSeparator();
+  for (QDockWidget* dock : findChildren<QDockWidget*>())
+    view_menu_->addAction(dock->toggleViewAction());
+
+  QMenu* arrange_menu = menuBar()->addMenu(tr("&Arrangement"));
+  session_actions_.run_pause = arrange_menu->addAction(tr("&Run / pause"));
+  session_actions_.run_pause->setShortcut(QKeySequence(Qt::Key_Space));
+  session_actions_.step = arrange_menu->addAction(tr("&Step one phase"));
+  session_actions_.step->setShortcut(QKeySequence(Qt::Key_F10));
+  session_actions_.stop = arrange_menu->addAction(tr("S&top"));
+  session_actions_.stop->setShortcut(QKeySequence(Qt::Key_Escape));
+  session_actions_.reset = arrange_menu->addAction(tr("R&eset"));
+  session_actions_.reset->setShortcut(QKeySequence(tr("Ctrl+R")));
+
+  for (QAction* action : {session_actions_.run_pause, session_actions_.step, session_actions_.stop,
+                          session_actions_.reset, session_actions_.export_obj,
+                          session_actions_.export_glb, session_actions_.export_report})
+    action->setEnabled(false);
+
+  QToolBar* toolbar = addToolBar(tr("Main"));
+  toolbar->setObjectName("main_toolbar");
+  toolbar->addAction(open_pattern);
+  toolbar->addAction(open_body);
+  toolbar->addSeparator();
+  toolbar->addAction(session_actions_.run_pause);
+  toolbar->addAction(session_actions_.step);
+  toolbar->addAction(session_actions_.stop);
+  toolbar->addAction(session_actions_.reset);
+  toolbar->addSeparator();
+  toolbar->addAction(frame_all);
+}
+
+void MainWindow::rebuildRecentFilesMenu() {
+  recent_menu_->clear();
+  const QStringList paths = RecentFiles::load();
+  for (const QString& path : paths)
+    recent_menu_->addAction(QFileInfo(path).fileName() + "   " + QFileInfo(path).absolutePath(),
+                            this, [this, path] { openRecent(path); });
+  if (!paths.isEmpty()) recent_menu_->addSeparator();
+  QAction* clear = recent_menu_->addAction(tr("Clear"), this, [] { RecentFiles::clear(); });
+  clear->setEnabled(!paths.isEmpty());
+}
+
+void MainWindow::openRecent(const QString& path) {
+  if (!QFileInfo::exists(path)) {
+    RecentFiles::remove(path);
+    presentError(tr("Cannot open recent file"), tr("%1: the file no longer exists").arg(path));
+    return;
+  }
+  if (is_body_file(path))
+    openBody(path);
+  else
+    openPattern(path);
+}
+
+void MainWindow::setErrorPresenter(ErrorPresenter presenter) {
+  error_presenter_ = std::move(presenter);
+}
+
+void MainWindow::presentError(const QString& title, const QString& message) {
+  if (error_presenter_) error_presenter_(title, message);
+}
+
+bool MainWindow::openPattern(const QString& path) {
+  return openPatternFile(path, true);
+}
+
+bool MainWindow::openDemo() {
+  return openPatternFile(demo_pattern_path(), false);
+}
+
+bool MainWindow::openPatternFile(const QString& path, bool remember) {
+  std::shared_ptr<const Garment> garment;
+  try {
+    BusyCursor busy;
+    garment = std::make_shared<const Garment>(build_garment(load_pattern(path.toStdString())));
+  } catch (const std::exception& error) {
+    presentError(tr("Cannot open pattern"), QString::fromStdString(error.what()));
+    return false;
+  }
+  garment_ = garment;
+  pattern_path_ = path;
+  pattern_view_->setGarment(garment_);
+  avatar_view_->setGarment(garment_);
+  classifier_model_->setClassifications({}, {});
+  order_list_->clear();
+  status_bar_->setStatus({});
+  if (remember) RecentFiles::add(path);
+  updateTitle();
+  emit garmentOpened(garment_);
+  return true;
+}
+
+bool MainWindow::openBody(const QString& path) {
+  std::shared_ptr<const BodyMesh> body;
+  try {
+    BusyCursor busy;
+    body = std::make_shared<const BodyMesh>(load_body_obj(path.toStdString()));
+  } catch (const std::exception& error) {
+    presentError(tr("Cannot open body"), QString::fromStdString(error.what()));
+    return false;
+  }
+  body_ = body;
+  body_path_ = path;
+  avatar_view_->setBody(body_);
+  setBodyLocations({});
+  RecentFiles::add(path);
+  updateTitle();
+  emit bodyOpened(body_);
+  return true;
+}
+
+void MainWindow::updateTitle() {
+  QStringList parts;
+  if (!pattern_path_.isEmpty()) parts << QFileInfo(pattern_path_).fileName();
+  if (!body_path_.isEmpty()) parts << QFileInfo(body_path_).fileName();
+  setWindowTitle(parts.isEmpty() ? tr("garment-studio")
+                                 : tr("%1 — garment-studio").arg(parts.join(tr(" on "))));
+}
+
+void MainWindow::setPieceStates(const std::vector<PieceState>& states) {
+  pattern_view_->setPieceStates(states);
+}
+
+void MainWindow::setGarmentPositions(std::shared_ptr<const Eigen::MatrixX3d> positions) {
+  avatar_view_->setGarmentPositions(std::move(positions));
+}
+
+void MainWindow::setClassifications(const QStringList& class_names,
+                                    std::vector<PieceClassification> rows) {
+  classifier_model_->setClassifications(class_names, std::move(rows));
+}
+
+void MainWindow::setBodyLocations(std::vector<BodyLocationMarker> locations) {
+  const QSignalBlocker blocker(location_list_);
+  location_list_->clear();
+  for (const BodyLocationMarker& location : locations)
+    location_list_->addItem(QString::fromStdString(location.name));
+  avatar_view_->setBodyLocations(std::move(locations));
+  avatar_view_->setHighlightedLocation(-1);
+}
+
+void MainWindow::setArrangementOrder(const std::vector<int>& pieces) {
+  QStringList names;
+  if (garment_)
+    for (const Piece& piece : garment_->pieces)
+      names << QString::fromStdString(piece.name);
+  order_list_->setOrder(pieces, names);
+}
+
+void MainWindow::setArrangementStatus(const ArrangementStatus& status) {
+  status_bar_->setStatus(status);
+}
+
+void MainWindow::selectPieces(const QList<int>& pieces) {
+  pattern_view_->setSelectedPieces(pieces);
+  avatar_view_->setSelectedPieces(pattern_view_->selectedPieces());
+}
+
+QList<int> MainWindow::selectedPieces() const {
+  return pattern_view_->selectedPieces();
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+  if (!dropped_files(event->mimeData()).isEmpty())
+    event->acceptProposedAction();
+  else
+    event->ignore();
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+  const QStringList files = dropped_files(event->mimeData());
+  if (files.isEmpty()) {
+    event->ignore();
+    return;
+  }
+  event->acceptProposedAction();
+  for (const QString& file : files) {
+    if (is_pattern_file(file))
+      openPattern(file);
+    else
+      openBody(file);
+  }
+}
+
+void MainWindow::restoreSettings() {
+  QSettings settings;
+  restoreGeometry(settings.value("window/geometry").toByteArray());
+  restoreState(settings.value("window/state").toByteArray());
+  splitter_->restoreState(settings.value("window/splitter").toByteArray());
+}
+
+void MainWindow::saveSettings() const {
+  QSettings settings;
+  settings.setValue("window/geometry", saveGeometry());
+  settings.setValue("window/state", saveState());
+  settings.setValue("window/splitter", splitter_->saveState());
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  saveSettings();
+  QMainWindow::closeEvent(event);
 }
 
 }  // namespace garment::ui

@@ -1,14 +1,130 @@
 #pragma once
-// The garment-studio main window: pattern view and avatar view side by side.
+// The garment-studio main window: the pattern view and the avatar view side by side in a splitter,
+// docks for the classifier's verdict, the body locations and the arrangement order, and a status
+// bar for the arrangement's progress. Opens patterns and bodies (menus, recent files, drag and
+// drop); a file that fails to open is reported and leaves what is open untouched.
+//
+// The arrangement session plugs in from outside through plain data: the set* functions below take
+// what a session snapshot holds, the signals carry what the user asked for, and sessionActions()
+// are the Run/Pause, Step, Stop, Reset and export actions, disabled until something connects them.
+// Call everything on the GUI thread.
 
+#include <QList>
 #include <QMainWindow>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "engine/body/body_mesh.h"
+#include "engine/pattern/garment_mesh.h"
+#include "ui/arrangement_status_bar.h"
+#include "ui/body_location_marker.h"
+#include "ui/classifier_table_model.h"
+#include "ui/piece_state.h"
+
+class QAction;
+class QListWidget;
+class QMenu;
+class QSplitter;
+class QTableView;
 
 namespace garment::ui {
+
+class ArrangementOrderList;
+class AvatarView;
+class PatternView;
+
+// Actions the session integration connects and enables.
+struct SessionActions {
+  QAction* run_pause = nullptr;  // Space
+  QAction* step = nullptr;       // F10: one phase
+  QAction* stop = nullptr;       // Esc
+  QAction* reset = nullptr;      // Ctrl+R
+  QAction* export_obj = nullptr;
+  QAction* export_glb = nullptr;
+  QAction* export_report = nullptr;
+};
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
  public:
+  // Shows a failed file operation; the default is a modal QMessageBox.
+  using ErrorPresenter = std::function<void(const QString& title, const QString& message)>;
+
   explicit MainWindow(QWidget* parent = nullptr);
+
+  // Files. On failure the error is presented, false returned, and the open pattern and body stay.
+  bool openPattern(const QString& path);
+  bool openBody(const QString& path);
+  // The bundled demo pattern (resources/demo), not remembered among the recent files.
+  bool openDemo();
+  void setErrorPresenter(ErrorPresenter presenter);
+
+  std::shared_ptr<const Garment> garment() const { return garment_; }
+  std::shared_ptr<const BodyMesh> body() const { return body_; }
+
+  // What the arrangement shows.
+  void setPieceStates(const std::vector<PieceState>& states);
+  void setGarmentPositions(std::shared_ptr<const Eigen::MatrixX3d> positions);
+  void setClassifications(const QStringList& class_names, std::vector<PieceClassification> rows);
+  void setBodyLocations(std::vector<BodyLocationMarker> locations);
+  void setArrangementOrder(const std::vector<int>& pieces);
+  void setArrangementStatus(const ArrangementStatus& status);
+
+  void selectPieces(const QList<int>& pieces);  // in both views; does not emit
+  QList<int> selectedPieces() const;
+
+  PatternView* patternView() const { return pattern_view_; }
+  AvatarView* avatarView() const { return avatar_view_; }
+  ArrangementOrderList* orderList() const { return order_list_; }
+  QListWidget* locationList() const { return location_list_; }
+  ClassifierTableModel* classifierModel() const { return classifier_model_; }
+  ArrangementStatusBar* arrangementStatusBar() const { return status_bar_; }
+  const SessionActions& sessionActions() const { return session_actions_; }
+  QMenu* recentFilesMenu() const { return recent_menu_; }
+
+ signals:
+  void garmentOpened(std::shared_ptr<const garment::Garment> garment);
+  void bodyOpened(std::shared_ptr<const garment::BodyMesh> body);
+  // The user selected pieces in either view.
+  void pieceSelectionChanged(const QList<int>& pieces);
+  // The user chose a body location in the list (-1: none).
+  void bodyLocationSelected(int location);
+  // The user reordered the arrangement order list.
+  void arrangementOrderChanged(const QList<int>& order);
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
+
+ private:
+  void createActions();
+  void createDocks();
+  void rebuildRecentFilesMenu();
+  void openRecent(const QString& path);
+  bool openPatternFile(const QString& path, bool remember);
+  void presentError(const QString& title, const QString& message);
+  void updateTitle();
+  void restoreSettings();
+  void saveSettings() const;
+
+  PatternView* pattern_view_ = nullptr;
+  AvatarView* avatar_view_ = nullptr;
+  QSplitter* splitter_ = nullptr;
+  ClassifierTableModel* classifier_model_ = nullptr;
+  QTableView* classifier_table_ = nullptr;
+  QListWidget* location_list_ = nullptr;
+  ArrangementOrderList* order_list_ = nullptr;
+  ArrangementStatusBar* status_bar_ = nullptr;
+  QMenu* recent_menu_ = nullptr;
+  QMenu* view_menu_ = nullptr;
+  SessionActions session_actions_;
+  ErrorPresenter error_presenter_;
+
+  std::shared_ptr<const Garment> garment_;
+  std::shared_ptr<const BodyMesh> body_;
+  QString pattern_path_, body_path_;
 };
 
 }  // namespace garment::ui

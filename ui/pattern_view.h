@@ -1,0 +1,74 @@
+#pragma once
+// The 2D pattern view: every piece at its place on the pattern sheet (pattern_layout.h), filled
+// with the colour of its arrangement state and labelled with its name. The sewing relationships of
+// the selected pieces are drawn on top: both edges of each stitch highlighted in one colour and a
+// few sewing pairs joined by dashed lines. Wheel zooms at the cursor, dragging pans, a click
+// selects (Ctrl or Shift adds to the selection).
+
+#include <QGraphicsView>
+#include <QList>
+#include <memory>
+#include <vector>
+
+#include "engine/pattern/garment_mesh.h"
+#include "ui/piece_state.h"
+
+class QGraphicsPolygonItem;
+class QGraphicsSimpleTextItem;
+
+namespace garment::ui {
+
+class PatternView : public QGraphicsView {
+  Q_OBJECT
+ public:
+  explicit PatternView(QWidget* parent = nullptr);
+
+  // Shows a garment (nullptr clears the view). All pieces start waiting and unselected.
+  void setGarment(std::shared_ptr<const Garment> garment);
+  // One state per piece, in piece order; pieces past the end of the list are waiting.
+  void setPieceStates(const std::vector<PieceState>& states);
+  PieceState pieceState(int piece) const;
+
+  // Selects without emitting pieceSelectionChanged (for mirroring another view's selection).
+  void setSelectedPieces(const QList<int>& pieces);
+  QList<int> selectedPieces() const { return selected_; }
+
+  int pieceAt(const QPoint& view_position) const;  // -1 outside every piece
+  // Where a piece's label sits, in view coordinates: a point inside the piece.
+  QPoint pieceLabelPosition(int piece) const;
+  // Stitches drawn for the current selection.
+  int sewingHighlightCount() const { return sewing_highlight_count_; }
+
+ public slots:
+  void frameAll();
+
+ signals:
+  // The user changed the selection (click, Ctrl+click); not emitted by setSelectedPieces.
+  void pieceSelectionChanged(const QList<int>& pieces);
+
+ protected:
+  void wheelEvent(QWheelEvent* event) override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+  void resizeEvent(QResizeEvent* event) override;
+
+ private:
+  QPointF scenePoint(int vertex) const;  // a garment vertex on the sheet
+  QPointF labelAnchor(int piece, const QPointF& near) const;
+  void updatePieceAppearance(int piece);
+  void rebuildSewingHighlights();
+
+  std::shared_ptr<const Garment> garment_;
+  std::vector<Eigen::Vector2d> offsets_;
+  std::vector<QGraphicsPolygonItem*> piece_items_;
+  std::vector<QGraphicsSimpleTextItem*> label_items_;
+  QRectF pieces_rect_;  // scene rectangle of all outlines
+  std::vector<PieceState> states_;
+  QList<int> selected_;
+  std::vector<QGraphicsItem*> sewing_items_;
+  int sewing_highlight_count_ = 0;
+  QPoint press_position_;
+  bool framed_by_user_ = false;  // zoomed or panned: resizing keeps the user's view
+};
+
+}  // namespace garment::ui
