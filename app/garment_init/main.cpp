@@ -23,6 +23,22 @@ const Command kCommands[] = {
      "one\n"
      "object {pieces, stitches, darts, vertices, triangles}.",
      garment::cli::inspect_command},
+    {"check", "check GARMENT.obj --pattern PATTERN.json --body BODY.obj [--json] [--edge-length M]",
+     "Measures a garment OBJ (as exported: one group per panel, vt = pattern coordinates) made from\n"
+     "PATTERN.json (meshed at --edge-length, default 0.02 m) on BODY.obj and prints every metric:\n"
+     "body_inside_vertices (and max depth), body_crossing_edges, self_crossing_edges (cloth edges\n"
+     "through cloth triangles, seams welded, with the pairs of pieces), folds (neighbour triangles\n"
+     "with normal dot < -0.5; theta_in/theta_out), max_strain, p99_strain, max_seam_gap_m,\n"
+     "misplaced (pieces on the wrong side of the body; expected sides from the panel names), fails\n"
+     "and ok. ok = nothing inside or crossing the body, no cloth crossing, no fold, strain <= 20 %,\n"
+     "seam gap <= 5 mm, nothing misplaced. Exit 0 when ok, 3 when not. --json prints one object.",
+     garment::cli::check_command},
+    {"flat", "flat PATTERN.json -o OUT.obj [--edge-length M]",
+     "Writes the pieces flat where the pattern file places them (world = R(x, y, 0) + translation,\n"
+     "R = Rz.Ry.Rx of the panel rotation), unsimulated: the state GarmentCode's simulator starts\n"
+     "from, the reference to compare with. OBJ as exported (one group per panel, vt = pattern\n"
+     "coordinates, metres).",
+     garment::cli::flat_command},
 };
 
 void print_help(std::ostream& out) {

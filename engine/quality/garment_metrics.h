@@ -1,0 +1,105 @@
+#pragma once
+// Artifact metrics of a garment state (DESIGN.md "Quality", paper §7.4 and §8.3): what the report
+// prints, what the verdict judges, and what the arrangement's termination checks read. A checker
+// is built once per garment (topology, rest lengths, welded seams) and per body (AABB tree, axes),
+// then measures any number of states: cheap enough to run after every batch.
+//
+// Definitions (E = edges of the unwelded pieces, the springs; "welded" = sewing and dart pairs
+// joined, so that triangles meeting at a seam or a dart are adjacent):
+//   body_inside_vertices  cloth vertices strictly inside the body (exact ray parity); depth = their
+//                         distance to the surface
+//   body_crossing_edges   edges of E touching or crossing the body surface (exact)
+//   self_crossing_edges   edges of E touching a cloth triangle that shares no welded vertex with
+//                         them (exact), with the pairs of pieces involved
+//   folds                 neighbour triangles inside a piece whose normals have dot < -0.5
+//   theta_in / theta_out  smallest normal dot of neighbour triangles inside pieces / of triangle
+//                         pairs that become neighbours by sewing with consistent winding (Eq. 13)
+//   strain                stretch of the edges of E: max(0, length / rest length - 1), rest
+//                         lengths from rest_positions (compression does not count)
+//   seam gap              distance between the two vertices of a sewing pair
+//   misplaced             piece_placement.h
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "engine/body/body_mesh.h"
+#include "engine/core/mesh_topology.h"
+#include "engine/pattern/garment_mesh.h"
+#include "engine/quality/body_axes.h"
+#include "engine/quality/exact_intersections.h"
+#include "engine/quality/expected_region.h"
+#include "engine/quality/piece_placement.h"
+
+namespace garment {
+
+// A body prepared for checking garments against it; build once and share.
+struct BodyReference {
+  explicit BodyReference(const BodyMesh& body) : surface(body), axes(body_axes(body)) {}
+  BodySurfaceQueries surface;
+  BodyAxes axes;
+};
+
+struct PiecePairCount {
+  int piece_a = 0, piece_b = 0;  // piece_a <= piece_b (equal: a piece crossing itself)
+  int count = 0;                 // edges of either piece touching a triangle of the other
+};
+
+struct GarmentMetrics {
+  bool body_checked = false;  // false when measured without a body: body and placement stay 0
+  int body_inside_vertices = 0;
+  double max_inside_depth_m = 0.0;
+  int body_crossing_edges = 0;
+  std::vector<int> piece_inside_vertices;  // per piece
+  std::vector<int> piece_crossing_edges;   // per piece
+
+  int self_crossing_edges = 0;
+  std::vector<PiecePairCount> self_crossing_pairs;  // sorted by (piece_a, piece_b)
+
+  int folds = 0;
+  std::vector<int> piece_folds;  // per piece
+  double theta_in = 1.0;         // 1 when there is no pair to compare
+  double theta_out = 1.0;
+
+  double max_strain = 0.0;
+  double p99_strain = 0.0;
+  std::vector<double> piece_max_strain;  // per piece
+
+  double max_seam_gap_m = 0.0;
+  std::vector<double> stitch_max_gap_m;  // per Garment::stitches entry
+
+  std::vector<Misplacement> misplaced;
+
+  double seconds_body = 0.0;           // inside vertices and body crossings
+  double seconds_self_crossing = 0.0;  // cloth-cloth contacts
+  double seconds_total = 0.0;
+};
+
+class GarmentChecker {
+ public:
+  // `garment` and `body` (may be null: no body metrics, no placement check) must outlive the
+  // checker. regions: one per piece (expected_regions_from_names when nothing better is known).
+  GarmentChecker(const Garment& garment, const BodyReference* body,
+                 std::vector<ExpectedRegion> regions);
+
+  // positions: #V×3 garment state.
+  GarmentMetrics measure(const Eigen::MatrixX3d& positions) const;
+
+  // #V welded vertex ids (sewing and dart pairs joined transitively).
+  const Eigen::VectorXi& welded() const { return welded_; }
+
+ private:
+  const Garment& garment_;
+  const BodyReference* body_;
+  std::vector<ExpectedRegion> regions_;
+  MeshEdges edges_;  // of the unwelded pieces
+  Eigen::VectorXd rest_lengths_;
+  Eigen::VectorXi welded_;
+  std::vector<Eigen::Vector2i> seam_neighbours_;  // triangle pairs adjacent by sewing only
+};
+
+// One-off measurement (builds a checker).
+GarmentMetrics measure_garment(const Garment& garment, const Eigen::MatrixX3d& positions,
+                               const BodyReference* body,
+                               const std::vector<ExpectedRegion>& regions);
+
+}  // namespace garment
