@@ -1,0 +1,231 @@
+#include "engine/energy/assembler.h"
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace garment {
+namespace {
+
+// Below this much work per block (elements + free vertices) a second thread costs more (wake-up,
+// cache traffic) than it saves; measured with bench_solver_assembly.
+constexpr std::size_t kMinWorkPerBlock = 1024;
+
+int usable_threads() {
+  const auto allowed = static_cast<int>(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  return std::max(1, std::min(tbb::this_task_arena::max_concurrency(), allowed));
+}
+
+}  // namespace
+
+void Assembler::run_blocks(int blocks, void (*block)(void*, int), void* context) {
+  if (blocks == 1) {
+    block(context, 0);
+    return;
+  }
+  tbb::parallel_for(
+      0, blocks, [&](int b) { block(context, b); }, tbb::static_partitioner());
+}
+
+void Assembler::compile_quadratic(const std::vector<Potential*>& quadratic,
+                                  const ActiveSet& active) {
+  has_quadratic_ = !quadratic.empty();
+  const int n = vertex_count_;
+  k_start_.assign(static_cast<std::size_t>(n) + 1, 0);
+  k_middle_.assign(static_cast<std::size_t>(n), 0);
+  k_columns_.clear();
+  k_values_.clear();
+  k_diagonal_.assign(static_cast<std::size_t>(n), 0.0);
+  k_linear_.setZero(n, 3);
+  k_constant_ = 0.0;
+  if (!has_quadratic_) return;
+  QuadraticTerms terms(n);
+  for (const Potential* potential : quadratic)
+    potential->add_quadratic_terms(terms);
+  k_linear_ = terms.linear();
+  k_constant_ = terms.constant();
+  // Off-diagonal entries by row, duplicates merged, free columns before fixed ones.
+  std::vector<QuadraticTerms::Entry> entries;
+  entries.reserve(terms.entries().size());
+  for (const QuadraticTerms::Entry& entry : terms.entries()) {
+    if (entry.row == entry.column) {
+      k_diagonal_[entry.row] += entry.value;
+    } else {
+      entries.push_back(entry);
+    }
+  }
+  std::sort(entries.begin(), entries.end(), [&](const auto& a, const auto& b) {
+    if (a.row != b.row) return a.row < b.row;
+    const bool a_free = active.is_free(a.column), b_free = active.is_free(b.column);
+    if (a_free != b_free) return a_free;
+    return a.column < b.column;
+  });
+  for (std::size_t i = 0; i < entries.size();) {
+    const int row = entries[i].row, column = entries[i].column;
+    double value = 0.0;
+    for (; i < entries.size() && entries[i].row == row && entries[i].column == column; ++i)
+      value += entries[i].value;
+    k_columns_.push_back(column);
+    k_values_.push_back(value);
+    ++k_start_[row + 1];
+    if (active.is_free(column)) ++k_middle_[row];
+  }
+  for (int v = 0; v < n; ++v) {
+    k_middle_[v] += k_start_[v];
+    k_start_[v + 1] += k_start_[v];
+  }
+}
+
+void Assembler::prepare(const std::vector<Potential*>& potentials, const ActiveSet& active,
+                        const Positions& x) {
+  vertex_count_ = active.vertex_count();
+  const std::size_t values = 3 * static_cast<std::size_t>(vertex_count_);
+
+  std::vector<Potential*> quadratic;
+  scattering_.clear();
+  std::size_t work = 0;
+  current_diagonal_ = lagged_diagonal_ = false;
+  std::vector<char> touched(static_cast<std::size_t>(vertex_count_), 0);
+  for (Potential* potential : potentials) {
+    potential->mark_touched_vertices(touched);
+    if (potential->is_quadratic()) {
+      quadratic.push_back(potential);
+      continue;
+    }
+    scattering_.push_back(potential);
+    work += static_cast<std::size_t>(potential->element_count());
+    current_diagonal_ = current_diagonal_ || potential->diagonal_kind() == DiagonalKind::Current;
+    lagged_diagonal_ = lagged_diagonal_ || potential->diagonal_kind() == DiagonalKind::Lagged;
+  }
+  touched_free_.clear();
+  touched_fixed_.clear();
+  for (int v = 0; v < vertex_count_; ++v) {
+    if (!touched[v]) continue;
+    (active.is_free(v) ? touched_free_ : touched_fixed_).push_back(v);
+  }
+  compile_quadratic(quadratic, active);
+  work += touched_free_.size();
+
+  block_count_ =
+      static_cast<int>(std::clamp<std::size_t>(work / kMinWorkPerBlock, 1, usable_threads()));
+  const auto allocate = [&](std::vector<std::vector<double>>& buffers, bool needed) {
+    buffers.resize(needed ? static_cast<std::size_t>(block_count_) : 0);
+    for (auto& buffer : buffers)
+      buffer.assign(values, 0.0);
+  };
+  allocate(gradient_buffers_, !scattering_.empty());
+  allocate(current_buffers_, current_diagonal_);
+  allocate(lagged_buffers_, lagged_diagonal_);
+  lagged_diagonal_values_.assign(lagged_diagonal_ ? values : 0, 0.0);
+  refreshing_lagged_ = false;
+  block_energy_.assign(static_cast<std::size_t>(block_count_), 0.0);
+
+  // Constant diagonals, once: K's diagonal, and the constant-kind potentials evaluated through
+  // the same accumulate with a scratch gradient.
+  constant_diagonal_.assign(values, 0.0);
+  for (int v = 0; v < vertex_count_; ++v)
+    for (int c = 0; c < 3; ++c)
+      constant_diagonal_[3 * static_cast<std::size_t>(v) + c] = k_diagonal_[v];
+  std::vector<double> scratch(values, 0.0);
+  const Accumulator out{scratch.data(), constant_diagonal_.data()};
+  for (Potential* potential : scattering_) {
+    if (potential->diagonal_kind() != DiagonalKind::Constant) continue;
+    potential->begin_evaluation(x, 0);
+    potential->accumulate(x, 0, potential->element_count(), out);
+  }
+}
+
+double Assembler::accumulate(const Positions& x, int iteration, bool with_quadratic_energy,
+                             bool refresh_lagged_diagonal, bool* landscape_changed) {
+  bool changed = false;
+  for (Potential* potential : scattering_)
+    changed = potential->begin_evaluation(x, iteration) || changed;
+  if (landscape_changed) *landscape_changed = changed;
+  refreshing_lagged_ = lagged_diagonal_ && refresh_lagged_diagonal;
+
+  const int blocks = block_count_;
+  const auto run_block = [&](int b) {
+    double energy = 0.0;
+    for (const Potential* potential : scattering_) {
+      const long long count = potential->element_count();
+      const int begin = static_cast<int>(count * b / blocks);
+      const int end = static_cast<int>(count * (b + 1) / blocks);
+      if (begin >= end) continue;
+      double* diagonal = nullptr;
+      switch (potential->diagonal_kind()) {
+        case DiagonalKind::Constant:
+          break;
+        case DiagonalKind::Lagged:
+          if (refreshing_lagged_) diagonal = lagged_buffers_[b].data();
+          break;
+        case DiagonalKind::Current:
+          diagonal = current_buffers_[b].data();
+          break;
+      }
+      energy += potential->accumulate(x, begin, end, {gradient_buffers_[b].data(), diagonal});
+    }
+    block_energy_[b] = energy;
+  };
+  if (!scattering_.empty()) {
+    run_blocks(
+        blocks, [](void* context, int b) { (*static_cast<decltype(run_block)*>(context))(b); },
+        const_cast<void*>(static_cast<const void*>(&run_block)));
+  }
+  double total = 0.0;
+  for (int b = 0; b < blocks && !scattering_.empty(); ++b)
+    total += block_energy_[b];
+  if (with_quadratic_energy && has_quadratic_) total += quadratic_energy(x);
+  return total;
+}
+
+double Assembler::quadratic_energy(const Positions& x) const {
+  if (!has_quadratic_) return 0.0;
+  // ½ xᵀK x − b·x + c over the rows of free and fixed vertices: free–free pairs appear in both
+  // rows (½ each), free–fixed pairs in the free row only (whole), fixed–fixed in both (½ each).
+  const auto row_energy = [&](int v, bool free) {
+    const Eigen::Vector3d xv = x.row(v).transpose();
+    Eigen::Vector3d half = 0.5 * k_diagonal_[v] * xv;
+    for (int e = k_start_[v]; e < k_middle_[v]; ++e)
+      half += (free ? 0.5 : 0.0) * k_values_[e] * x.row(k_columns_[e]).transpose();
+    for (int e = k_middle_[v]; e < k_start_[v + 1]; ++e)
+      half += (free ? 1.0 : 0.5) * k_values_[e] * x.row(k_columns_[e]).transpose();
+    return xv.dot(half - k_linear_.row(v).transpose());
+  };
+  const auto reduce = [&](const std::vector<int>& vertices, bool free) {
+    return tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<std::size_t>(0, vertices.size(), 512), 0.0,
+        [&](const tbb::blocked_range<std::size_t>& range, double sum) {
+          for (std::size_t i = range.begin(); i != range.end(); ++i)
+            sum += row_energy(vertices[i], free);
+          return sum;
+        },
+        std::plus<double>());
+  };
+  return reduce(touched_free_, true) + reduce(touched_fixed_, false) + k_constant_;
+}
+
+std::size_t Assembler::bytes_per_evaluation() const {
+  std::size_t bytes = 0;
+  for (const Potential* potential : scattering_)
+    bytes += potential->element_bytes();
+  const std::size_t touched = touched_free_.size() + touched_fixed_.size();
+  const std::size_t row = 3 * sizeof(double);
+  // Positions read once; K (column + value per entry, diagonal and b per row); every block
+  // buffer written in pass 1 and read + cleared in pass 2.
+  bytes += touched * row;
+  if (has_quadratic_)
+    bytes += k_values_.size() * (sizeof(int) + sizeof(double)) +
+             touched_free_.size() * (2 * sizeof(int) + sizeof(double) + row);
+  const std::size_t buffers = (scattering_.empty() ? 0 : 1) + (current_diagonal_ ? 1 : 0);
+  bytes += touched * row * 2 * buffers * static_cast<std::size_t>(block_count_);
+  bytes += touched_free_.size() * row * (lagged_diagonal_ ? 2 : 1);  // constant + lagged diagonal
+  return bytes;
+}
+
+}  // namespace garment

@@ -1,0 +1,50 @@
+#pragma once
+// Default strengths of every energy term, in one place (the paper keeps them constant across all
+// examples, §8, without publishing values; these are ours). Units are SI: positions in metres,
+// energies in joules. Per-vertex and per-pair penalties are per vertex (or pair) of a 20 mm mesh;
+// the stretch springs are resolution independent (see stretch_potential.h), bending is per unit of
+// the Bergou et al. 2006 energy.
+//
+// The pipeline copies this struct, changes what a phase needs (stiffened bending in alignment,
+// mild gravity in refinement) and passes the numbers to the potentials' constructors.
+
+namespace garment {
+
+struct EnergyParameters {
+  // F^def (§5.2): springs on mesh edges, E = ½ k (l − L)², k in N/m per edge. Dart pairs are
+  // zero-length springs (they close the dart) with their own k, N/m.
+  double stretch_stiffness = 1000.0;
+  double dart_stiffness = 1000.0;
+  // F^def: quadratic bending (Bergou et al. 2006), E = ½ k Σ 3/(A₀+A₁) |Σ Kᵢ xᵢ|², k in J.
+  // "Relatively high" (§5.2): a bending length (k / weight per area)^(1/3) of about 10 cm, five
+  // times real cloth, so the arrangement does not form fine wrinkles.
+  double bending_stiffness = 1.5e-3;
+  // Initial alignment stiffens bending (§7.1) by this factor.
+  double alignment_bending_factor = 10.0;
+  // F^sew (Eq. 9), zero-length springs between sewing pairs, N/m per pair.
+  double sewing_stiffness = 1000.0;
+  // F^ext (Eq. 10), arranged vertices held near their positions, N/m per vertex.
+  double fixing_stiffness = 1.0e4;
+  // Gravity: mass per vertex = density × (a third of the rest area of its triangles).
+  double fabric_density = 0.15;  // kg/m², a light cotton
+  double gravity = 9.81;         // m/s²
+  // §7.3 "mild gravity": fraction of full gravity in shape refinement.
+  double mild_gravity_factor = 0.3;
+  // F^cent (Eq. 3), centre of the seed to its body location, N/m (one term for the whole set).
+  double centring_stiffness = 1000.0;
+  // F^up (Eq. 4), N per vertex (a linear potential: a constant force of ½ k per vertex).
+  double upward_stiffness = 0.02;
+  // F^dist (Eq. 5), cloth-body distance of the seed, N/m per vertex, and the distance D, m.
+  double body_distance_stiffness = 100.0;
+  double body_distance = 0.01;
+  // F^body (Eq. 11) and F^self (Eq. 12): buffer ε = 4 mm (§7.2), N/m per vertex.
+  double repulsion_buffer = 0.004;
+  double body_repulsion_stiffness = 1.0e4;
+  double self_repulsion_stiffness = 1.0e3;
+  // F^self: a vertex is repelled by the closest arranged triangle within this distance, m, looked
+  // up again every this many iterations.
+  double self_repulsion_search_radius = 0.05;
+  int self_repulsion_refresh_interval = 16;
+};
+
+}  // namespace garment

@@ -1,0 +1,132 @@
+#include "engine/energy/self_repulsion_potential.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <Eigen/Geometry>
+
+#include <chrono>
+#include <stdexcept>
+
+namespace garment {
+
+SelfRepulsionPotential::SelfRepulsionPotential(Eigen::MatrixX3i triangles,
+                                               std::vector<int> vertices,
+                                               std::vector<int> obstacle_triangles,
+                                               const SelfRepulsionSettings& settings)
+    : triangles_(std::move(triangles)),
+      vertices_(std::move(vertices)),
+      obstacle_triangles_(std::move(obstacle_triangles)),
+      settings_(settings) {
+  if (!(settings_.stiffness >= 0.0 && settings_.buffer >= 0.0 && settings_.search_radius > 0.0 &&
+        settings_.refresh_interval >= 1))
+    throw std::invalid_argument(
+        "SelfRepulsionPotential: stiffness and buffer ≥ 0, search radius > 0, refresh ≥ 1");
+  for (int t : obstacle_triangles_)
+    if (t < 0 || t >= triangles_.rows())
+      throw std::invalid_argument("SelfRepulsionPotential: obstacle triangle out of range");
+}
+
+void SelfRepulsionPotential::set_stiffness(double stiffness) {
+  settings_.stiffness = stiffness;
+  changed();
+}
+
+void SelfRepulsionPotential::bind_elements(const ActiveSet& active) {
+  active_ = active;
+  candidates_.clear();
+  for (int v : vertices_)
+    if (active.exists(v)) candidates_.push_back(v);
+  obstacles_.clear();
+  for (int t : obstacle_triangles_)
+    if (active.exists(triangles_(t, 0)) && active.exists(triangles_(t, 1)) &&
+        active.exists(triangles_(t, 2)))
+      obstacles_.push_back(t);
+  contacts_.clear();
+  refreshed_ = false;
+}
+
+bool SelfRepulsionPotential::begin_evaluation(const Positions& x, int iteration) {
+  if (refreshed_ && iteration % settings_.refresh_interval != 0) return false;
+  refresh(x);
+  refreshed_ = true;
+  return true;
+}
+
+void SelfRepulsionPotential::refresh(const Positions& x) {
+  const auto start = std::chrono::steady_clock::now();
+  contacts_.clear();
+  if (!obstacles_.empty() && !candidates_.empty()) {
+    double edge_sum = 0.0;
+    for (int t : obstacles_)
+      for (int k = 0; k < 3; ++k)
+        edge_sum += (x.row(triangles_(t, k)) - x.row(triangles_(t, (k + 1) % 3))).norm();
+    const double mean_edge = edge_sum / (3.0 * static_cast<double>(obstacles_.size()));
+    // Cells of two mean edges hold a handful of triangles each (measured in
+    // bench_solver_closest_triangle); never finer than the search radius / 8.
+    grid_.build(x, triangles_, obstacles_, std::max(2.0 * mean_edge, settings_.search_radius / 8));
+
+    std::vector<ClosestTriangleGrid::Hit> hits(candidates_.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates_.size(), 64),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t c = range.begin(); c != range.end(); ++c) {
+                          const int v = candidates_[c];
+                          hits[c] =
+                              grid_.closest(x, x.row(v).transpose(), settings_.search_radius, v);
+                        }
+                      });
+    for (std::size_t c = 0; c < candidates_.size(); ++c) {
+      const ClosestTriangleGrid::Hit& hit = hits[c];
+      if (hit.triangle < 0) continue;
+      const int v = candidates_[c];
+      const std::array<int, 3> corners = {triangles_(hit.triangle, 0), triangles_(hit.triangle, 1),
+                                          triangles_(hit.triangle, 2)};
+      if (!active_.includes({v, corners[0], corners[1], corners[2]})) continue;
+      const Eigen::Vector3d a = x.row(corners[0]).transpose();
+      const Eigen::Vector3d normal =
+          (x.row(corners[1]).transpose() - a).cross(x.row(corners[2]).transpose() - a);
+      const double length = normal.norm();
+      if (!(length > 0.0)) continue;
+      contacts_.push_back({v, corners, hit.weights, normal / length});
+    }
+  }
+  last_refresh_seconds_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double SelfRepulsionPotential::accumulate(const Positions& x, int begin, int end,
+                                          const Accumulator& out) const {
+  const double k = settings_.stiffness;
+  double energy = 0.0;
+  for (int e = begin; e < end; ++e) {
+    const Contact& contact = contacts_[e];
+    const Eigen::Vector3d closest = contact.weights.x() * x.row(contact.corners[0]).transpose() +
+                                    contact.weights.y() * x.row(contact.corners[1]).transpose() +
+                                    contact.weights.z() * x.row(contact.corners[2]).transpose();
+    // Eq. 12: ½ k min((x_i − x_t)·n(t) − ε, 0)²
+    const double depth =
+        (x.row(contact.vertex).transpose() - closest).dot(contact.normal) - settings_.buffer;
+    if (depth >= 0.0) continue;
+    energy += 0.5 * k * depth * depth;
+    const Eigen::Vector3d force = (k * depth) * contact.normal;
+    out.gradient_row(contact.vertex) += force;
+    for (int c = 0; c < 3; ++c)
+      out.gradient_row(contact.corners[c]) -= contact.weights[c] * force;
+    if (out.hessian_diagonal) {
+      const Eigen::Vector3d n2 = k * contact.normal.cwiseProduct(contact.normal);
+      out.diagonal_row(contact.vertex) += n2;
+      for (int c = 0; c < 3; ++c)
+        out.diagonal_row(contact.corners[c]) += (contact.weights[c] * contact.weights[c]) * n2;
+    }
+  }
+  return energy;
+}
+
+void SelfRepulsionPotential::mark_touched_vertices(std::vector<char>& touched) const {
+  for (int v : candidates_)
+    touched[v] = 1;
+  for (int t : obstacles_)
+    for (int k = 0; k < 3; ++k)
+      touched[triangles_(t, k)] = 1;
+}
+
+}  // namespace garment

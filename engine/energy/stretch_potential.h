@@ -1,0 +1,55 @@
+#pragma once
+// In-plane part of the deformation potential F^def (paper §5.2): a spring on every mesh edge,
+//   E = ½ k Σ_e (|x_i − x_j| − L_e)²,
+// with L_e the edge length in the rest pattern. k is in N/m per spring: on a regular triangle mesh
+// the energy per area of a uniform strain does not depend on the edge length, so one k serves
+// every resolution. Darts (§3: same-piece stitches) are zero-length springs on the dart pairs,
+// which close the dart like a seam.
+//
+// Hessian diagonal: of the per-spring block k[n nᵀ + max(0, 1 − L/l)(I − n nᵀ)] (n = unit edge
+// direction), the exact Hessian with the negative part of a compressed spring removed: exact for
+// springs at or beyond their rest length, larger than the exact (indefinite) one when compressed.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "engine/energy/potential.h"
+#include "engine/pattern/garment_mesh.h"
+
+namespace garment {
+
+class StretchPotential : public Potential {
+ public:
+  // Springs on every mesh edge of the garment and zero-length springs on its dart pairs.
+  StretchPotential(const Garment& garment, double stiffness, double dart_stiffness);
+  // Springs given explicitly: #S×2 vertex pairs, rest lengths (m, ≥ 0), stiffness (N/m) each.
+  StretchPotential(const Eigen::MatrixX2i& springs, const Eigen::VectorXd& rest_lengths,
+                   const Eigen::VectorXd& stiffness);
+
+  // Scales every spring's stiffness relative to the values given at construction.
+  void set_stiffness_scale(double scale);
+
+  const char* name() const override { return "stretch"; }
+  int element_count() const override { return static_cast<int>(active_.size()); }
+  double accumulate(const Positions& x, int begin, int end, const Accumulator& out) const override;
+  DiagonalKind diagonal_kind() const override { return DiagonalKind::Lagged; }
+  void mark_touched_vertices(std::vector<char>& touched) const override;
+  std::size_t element_bytes() const override { return active_.size() * sizeof(Spring); }
+
+  struct Spring {
+    int i = 0, j = 0;
+    double rest_length = 0.0;
+    double stiffness = 0.0;
+  };
+  const std::vector<Spring>& springs() const { return springs_; }
+
+ protected:
+  void bind_elements(const ActiveSet& active) override;
+
+ private:
+  std::vector<Spring> springs_;  // all, at the construction stiffness
+  std::vector<Spring> active_;   // bound, stiffness scaled
+  double scale_ = 1.0;
+};
+
+}  // namespace garment
