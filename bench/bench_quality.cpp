@@ -43,6 +43,7 @@ struct Tally {
   std::string slowest;
   std::map<std::string, int> misplaced_names;  // "name: problem" → count
   std::map<std::string, int> crossing_pairs;   // "a × b" → patterns
+  std::map<std::string, int> penetrating;      // piece name → patterns
 };
 
 void print_tally(const char* title, const Tally& tally) {
@@ -80,6 +81,7 @@ void print_tally(const char* title, const Tally& tally) {
       std::printf("  %4d  %s\n", sorted[i].first, sorted[i].second.c_str());
   };
   print_top("misplaced pieces (piece: problem, patterns):", tally.misplaced_names);
+  print_top("pieces inside or through the body (patterns):", tally.penetrating);
   print_top("cloth-cloth crossing piece pairs (patterns):", tally.crossing_pairs);
 }
 
@@ -158,6 +160,9 @@ int main(int argc, char** argv) {
       tally->self_crossing_edges += metrics.self_crossing_edges;
       for (const garment::Misplacement& entry : metrics.misplaced)
         ++tally->misplaced_names[garment.pieces[entry.piece].name + ": " + entry.problem];
+      for (std::size_t p = 0; p < garment.pieces.size(); ++p)
+        if (metrics.piece_inside_vertices[p] > 0 || metrics.piece_crossing_edges[p] > 0)
+          ++tally->penetrating[garment.pieces[p].name];
       for (const garment::PiecePairCount& pair : metrics.self_crossing_pairs)
         ++tally->crossing_pairs[garment.pieces[pair.piece_a].name + " × " +
                                 garment.pieces[pair.piece_b].name];
