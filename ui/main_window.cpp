@@ -18,6 +18,7 @@
 #include <exception>
 
 #include "engine/pattern/pattern.h"
+#include "engine/quality/flat_placement.h"
 #include "ui/arrangement_order_list.h"
 #include "ui/avatar_view.h"
 #include "ui/bundled_resources.h"
@@ -245,6 +246,9 @@ bool MainWindow::openPatternFile(const QString& path, bool remember) {
   pattern_path_ = path;
   pattern_view_->setGarment(garment_);
   avatar_view_->setGarment(garment_);
+  // Until an arrangement runs, the 3D view shows the pieces where the file puts them.
+  avatar_view_->setGarmentPositions(
+      std::make_shared<const Eigen::MatrixX3d>(flat_placement(*garment_)));
   classifier_model_->setClassifications({}, {});
   order_list_->clear();
   status_bar_->setStatus({});

@@ -89,9 +89,18 @@ class MainWindowTest : public QObject {
     QCOMPARE(window_->garment()->pieces.size(), std::size_t(8));
     QVERIFY(window_->windowTitle().contains("demo_pattern.json"));
     QVERIFY(window_->patternView()->pieceAt(window_->patternView()->pieceLabelPosition(0)) == 0);
-    // The demo is not a recent file; no body yet, so no garment either.
+    // The demo is not a recent file.
     QVERIFY(ui::RecentFiles::load().isEmpty());
-    QVERIFY(!window_->avatarView()->garmentShown());
+    // Before any arrangement the 3D view shows the pieces flat where the file puts them: the
+    // front pieces (in front of the body, facing the camera) show their outside colour.
+    ui::AvatarView* avatar = window_->avatarView();
+    QVERIFY(avatar->garmentShown());
+    avatar->setOrbit(0, 0);
+    avatar->frameAll();
+    QCoreApplication::processEvents();
+    const QImage front = avatar->grabFramebuffer();
+    GARMENT_VERIFY_IMAGE(test::count_pixels(front, test::looks_outside) > 1000, front,
+                         "main_window_demo_flat");
   }
 
   void pickingSelectsInBothViews() {
