@@ -23,6 +23,16 @@ const Command kCommands[] = {
      "one\n"
      "object {pieces, stitches, darts, vertices, triangles}.",
      garment::cli::inspect_command},
+    {"body", "body [BODY.obj] [--json] [--spacing M] [--no-cache]",
+     "Loads a body (default: the bundled resources/bodies/mean_all.obj): OBJ with triangles or\n"
+     "polygons, metres or centimetres (detected); closed, manifold surface required. Prints its\n"
+     "size, landmark heights (crotch, hips, waist, bust, armpits, neck), torso/arm/leg axes, the 15\n"
+     "seed locations (name, surface cylinder|plane, centre, axis or normal, size) and the signed\n"
+     "distance field (spacing, default 0.006 m; build time; whether it came from the cache in\n"
+     "$XDG_CACHE_HOME/garment-studio). BODY.locations.json beside the OBJ overrides landmarks, axes\n"
+     "and locations. --json prints {vertices, triangles, height_m, landmarks, axes,\n"
+     "locations:[{name, center, axis, surface, ...}], sdf:{spacing_m, build_seconds, cached}}.",
+     garment::cli::body_command},
     {"check", "check GARMENT.obj --pattern PATTERN.json --body BODY.obj [--json] [--edge-length M]",
      "Measures a garment OBJ (as exported: one group per panel, vt = pattern coordinates) made from\n"
      "PATTERN.json (meshed at --edge-length, default 0.02 m) on BODY.obj and prints every metric:\n"

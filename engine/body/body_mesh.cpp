@@ -42,16 +42,23 @@ std::string_view next_word(std::string_view& rest) {
   return word;
 }
 
+// Appended, not concatenated: GCC 12 warns falsely (-Wrestrict) on "'" + std::string(...).
+std::string quoted(std::string_view word) {
+  std::string text = "'";
+  text.append(word).append("'");
+  return text;
+}
+
 double parse_coordinate(std::string_view word, const std::string& file, int line) {
   double value = 0.0;
   const char* end = word.data() + word.size();
   const auto [stop, error] = std::from_chars(word.data(), end, value);
   if (error != std::errc() || stop != end)
     throw_input_error(file, line_place(line),
-                      "'" + std::string(word) + "' is not a number (vertex coordinate)");
+                      quoted(word) + " is not a number (vertex coordinate)");
   if (!std::isfinite(value))
     throw_input_error(file, line_place(line),
-                      "vertex coordinate '" + std::string(word) + "' is not finite");
+                      "vertex coordinate " + quoted(word) + " is not finite");
   return value;
 }
 
@@ -63,7 +70,7 @@ int parse_corner(std::string_view word, int vertices_so_far, const std::string& 
   const auto [stop, error] = std::from_chars(number.data(), end, value);
   if (number.empty() || error != std::errc() || stop != end)
     throw_input_error(file, line_place(line),
-                      "face corner '" + std::string(word) + "' has no valid vertex index");
+                      "face corner " + quoted(word) + " has no valid vertex index");
   if (value == 0)
     throw_input_error(file, line_place(line), "vertex index 0 is invalid (OBJ counts from 1)");
   // Negative indices count back from the last vertex defined so far.

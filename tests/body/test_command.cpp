@@ -1,0 +1,86 @@
+// garment-init body: the report of a body, and bad bodies refused with exit status 1.
+
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QProcess>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include "support/test_paths.h"
+
+class BodyCommandTest : public QObject {
+  Q_OBJECT
+
+  struct Run {
+    int exit_code;
+    QByteArray out, err;
+  };
+
+  Run run(const QStringList& arguments) {
+    QProcess process;
+    QProcessEnvironment environment = QProcessEnvironment::systemEnvironment();
+    environment.insert("GARMENT_CACHE_DIR", cache.path());
+    process.setProcessEnvironment(environment);
+    process.start(GARMENT_INIT_EXE, arguments);
+    if (!process.waitForFinished(300000)) return {-1, {}, {}};
+    return {process.exitCode(), process.readAllStandardOutput(), process.readAllStandardError()};
+  }
+
+ private slots:
+  void initTestCase() { QVERIFY(cache.isValid()); }
+
+  void default_body_report_then_cached() {
+    for (bool expect_cached : {false, true}) {
+      const Run result = run({"body", "--json", "--spacing", "0.02"});
+      QVERIFY2(result.exit_code == 0, result.err.constData());
+      const QJsonObject report = QJsonDocument::fromJson(result.out).object();
+      QCOMPARE(report["vertices"].toInt(), 23752);
+      QCOMPARE(report["triangles"].toInt(), 47500);
+      QVERIFY(std::abs(report["height_m"].toDouble() - 1.72) < 0.01);
+      const QJsonArray locations = report["locations"].toArray();
+      QCOMPARE(locations.size(), 15);
+      for (const QJsonValue& value : locations) {
+        const QJsonObject location = value.toObject();
+        QVERIFY(!location["name"].toString().isEmpty());
+        QCOMPARE(location["center"].toArray().size(), 3);
+        QCOMPARE(location["axis"].toArray().size(), 3);
+        const QString surface = location["surface"].toString();
+        QVERIFY(surface == "cylinder" || surface == "plane");
+      }
+      QCOMPARE(locations[0].toObject()["name"].toString(), QString("neck"));
+      const QJsonObject sdf = report["sdf"].toObject();
+      QCOMPARE(sdf["spacing_m"].toDouble(), 0.02);
+      QVERIFY(sdf["build_seconds"].toDouble() > 0.0);
+      QCOMPARE(sdf["cached"].toBool(), expect_cached);
+      QVERIFY(report["landmarks"].toObject()["waist"].toDouble() > 1.0);
+    }
+  }
+
+  void text_report_names_the_locations() {
+    const Run result = run({"body", "--spacing", "0.02", "--no-cache"});
+    QVERIFY2(result.exit_code == 0, result.err.constData());
+    for (const char* name : {"neck_front", "chest_back_left", "pelvis", "landmark heights"})
+      QVERIFY2(result.out.contains(name), name);
+  }
+
+  void bad_body_exits_1_with_the_message() {
+    const QString path =
+        QString::fromStdString(garment::test::test_data("bodies/bad/open.obj").string());
+    const Run result = run({"body", path});
+    QCOMPARE(result.exit_code, 1);
+    QVERIFY2(result.err.contains(path.toUtf8()), result.err.constData());
+    QVERIFY2(result.err.contains("not closed"), result.err.constData());
+  }
+
+  void bad_usage_exits_2() {
+    QCOMPARE(run({"body", "--spacing", "7"}).exit_code, 2);
+    QCOMPARE(run({"body", "a.obj", "b.obj"}).exit_code, 2);
+  }
+
+ private:
+  QTemporaryDir cache;
+};
+
+QTEST_GUILESS_MAIN(BodyCommandTest)
+#include "test_command.moc"
