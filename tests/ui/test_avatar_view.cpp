@@ -35,16 +35,24 @@ class AvatarViewTest : public QObject {
   }
 
  private slots:
-  void init() {
+  // One view (one OpenGL context, shaders compiled once) for all tests; init() empties it.
+  void initTestCase() {
     view_ = std::make_unique<ui::AvatarView>();
     view_->resize(480, 400);
     view_->show();
     QVERIFY(QTest::qWaitForWindowExposed(view_.get()));
     QVERIFY2(view_->renderingAvailable(), "OpenGL 3.3 core context or shaders unavailable");
-    if (!garment_) garment_ = test::demo_garment();
+    garment_ = test::demo_garment();
   }
 
-  void cleanup() { view_.reset(); }
+  void init() {
+    view_->setBody(nullptr);
+    view_->setGarment(nullptr);
+    view_->setBodyLocations({});
+    view_->setOrbit(0, 8);
+  }
+
+  void cleanupTestCase() { view_.reset(); }
 
   void bodyDiffersFromBackground() {
     const QImage empty = render();

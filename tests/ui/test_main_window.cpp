@@ -152,7 +152,6 @@ class MainWindowTest : public QObject {
     // The default presenter: a modal QMessageBox, closed here as soon as it shows.
     ui::MainWindow window;
     QVERIFY(window.openDemo());
-    window.show();
     QString shown_text;
     QTimer closer;
     connect(&closer, &QTimer::timeout, [&] {
