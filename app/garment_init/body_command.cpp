@@ -11,11 +11,11 @@
 namespace garment::cli {
 namespace {
 
-nlohmann::json vector_json(const Eigen::Vector3d& v) {
+nlohmann::ordered_json vector_json(const Eigen::Vector3d& v) {
   return {v.x(), v.y(), v.z()};
 }
 
-nlohmann::json axis_json(const BodyAxis& axis) {
+nlohmann::ordered_json axis_json(const BodyAxis& axis) {
   return {{"origin", vector_json(axis.origin)},
           {"direction", vector_json(axis.direction)},
           {"length", axis.length}};
@@ -35,7 +35,7 @@ int body_command(const std::vector<std::string>& args) {
   options.use_cache = !line.has("--no-cache");
   const Body body = load_body(path, options);
 
-  nlohmann::json report;
+  nlohmann::ordered_json report;
   report["source"] = body.mesh.source;
   report["vertices"] = body.mesh.vertices.rows();
   report["triangles"] = body.mesh.triangles.rows();
@@ -51,14 +51,14 @@ int body_command(const std::vector<std::string>& args) {
                     {"right_arm", axis_json(marks.right_arm)},
                     {"left_leg", axis_json(marks.left_leg)},
                     {"right_leg", axis_json(marks.right_leg)}};
-  report["locations"] = nlohmann::json::array();
+  report["locations"] = nlohmann::ordered_json::array();
   for (const BodyLocation& location : body.locations) {
-    nlohmann::json entry{{"name", location.name},
-                         {"center", vector_json(location.center)},
-                         {"axis", vector_json(location.axis)},
-                         {"surface", surface_name(location.surface)},
-                         {"up", vector_json(location.up)},
-                         {"half_height", location.half_height}};
+    nlohmann::ordered_json entry{{"name", location.name},
+                                 {"center", vector_json(location.center)},
+                                 {"axis", vector_json(location.axis)},
+                                 {"surface", surface_name(location.surface)},
+                                 {"up", vector_json(location.up)},
+                                 {"half_height", location.half_height}};
     if (location.surface == LocationSurface::cylinder)
       entry["radius"] = location.radius;
     else
