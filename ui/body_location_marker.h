@@ -4,6 +4,9 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
+
+#include "engine/body/body_locations.h"
 
 namespace garment::ui {
 
@@ -12,5 +15,8 @@ struct BodyLocationMarker {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // metres, body frame
   Eigen::Vector3d axis = Eigen::Vector3d::UnitY();   // unit length
 };
+
+// Cylinders are drawn with their axis, planes with their normal.
+std::vector<BodyLocationMarker> body_location_markers(const std::vector<BodyLocation>& locations);
 
 }  // namespace garment::ui

@@ -1,5 +1,6 @@
 #pragma once
-// Files shipped in resources/ that the editor opens by itself.
+// Files shipped in resources/ that the editor opens by itself (the default body is the engine's
+// default_body_path()).
 
 #include <QString>
 

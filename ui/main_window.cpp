@@ -17,6 +17,7 @@
 #include <QToolBar>
 #include <exception>
 
+#include "engine/body/default_body.h"
 #include "engine/pattern/pattern.h"
 #include "engine/quality/flat_placement.h"
 #include "ui/arrangement_order_list.h"
@@ -229,8 +230,12 @@ bool MainWindow::openPattern(const QString& path) {
   return openPatternFile(path, true);
 }
 
-bool MainWindow::openDemo() {
+bool MainWindow::openDemoPattern() {
   return openPatternFile(demo_pattern_path(), false);
+}
+
+bool MainWindow::openDefaultBody() {
+  return openBodyFile(QString::fromStdString(default_body_path().string()), false);
 }
 
 bool MainWindow::openPatternFile(const QString& path, bool remember) {
@@ -259,19 +264,25 @@ bool MainWindow::openPatternFile(const QString& path, bool remember) {
 }
 
 bool MainWindow::openBody(const QString& path) {
-  std::shared_ptr<const BodyMesh> body;
+  return openBodyFile(path, true);
+}
+
+bool MainWindow::openBodyFile(const QString& path, bool remember) {
+  std::shared_ptr<const Body> body;
   try {
     BusyCursor busy;
-    body = std::make_shared<const BodyMesh>(load_body_obj(path.toStdString()));
+    // The whole body (signed distance field included, cached on disk after the first load), so
+    // that an arrangement can start from it.
+    body = std::make_shared<const Body>(load_body(path.toStdString()));
   } catch (const std::exception& error) {
     presentError(tr("Cannot open body"), QString::fromStdString(error.what()));
     return false;
   }
   body_ = body;
   body_path_ = path;
-  avatar_view_->setBody(body_);
-  setBodyLocations({});
-  RecentFiles::add(path);
+  avatar_view_->setBody(std::shared_ptr<const BodyMesh>(body_, &body_->mesh));
+  setBodyLocations(body_location_markers(body_->locations));
+  if (remember) RecentFiles::add(path);
   updateTitle();
   emit bodyOpened(body_);
   return true;

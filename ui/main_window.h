@@ -15,7 +15,7 @@
 #include <memory>
 #include <vector>
 
-#include "engine/body/body_mesh.h"
+#include "engine/body/body.h"
 #include "engine/pattern/garment_mesh.h"
 #include "ui/arrangement_status_bar.h"
 #include "ui/body_location_marker.h"
@@ -56,12 +56,15 @@ class MainWindow : public QMainWindow {
   // Files. On failure the error is presented, false returned, and the open pattern and body stay.
   bool openPattern(const QString& path);
   bool openBody(const QString& path);
-  // The bundled demo pattern (resources/demo), not remembered among the recent files.
-  bool openDemo();
+  // The bundled demo pattern and default body (resources/), not remembered among the recent
+  // files.
+  bool openDemoPattern();
+  bool openDefaultBody();
   void setErrorPresenter(ErrorPresenter presenter);
 
   std::shared_ptr<const Garment> garment() const { return garment_; }
-  std::shared_ptr<const BodyMesh> body() const { return body_; }
+  // The body with its signed distance field and 15 locations.
+  std::shared_ptr<const Body> body() const { return body_; }
 
   // What the arrangement shows.
   void setPieceStates(const std::vector<PieceState>& states);
@@ -85,7 +88,7 @@ class MainWindow : public QMainWindow {
 
  signals:
   void garmentOpened(std::shared_ptr<const garment::Garment> garment);
-  void bodyOpened(std::shared_ptr<const garment::BodyMesh> body);
+  void bodyOpened(std::shared_ptr<const garment::Body> body);
   // The user selected pieces in either view.
   void pieceSelectionChanged(const QList<int>& pieces);
   // The user chose a body location in the list (-1: none).
@@ -104,6 +107,7 @@ class MainWindow : public QMainWindow {
   void rebuildRecentFilesMenu();
   void openRecent(const QString& path);
   bool openPatternFile(const QString& path, bool remember);
+  bool openBodyFile(const QString& path, bool remember);
   void presentError(const QString& title, const QString& message);
   void updateTitle();
   void restoreSettings();
@@ -123,7 +127,7 @@ class MainWindow : public QMainWindow {
   ErrorPresenter error_presenter_;
 
   std::shared_ptr<const Garment> garment_;
-  std::shared_ptr<const BodyMesh> body_;
+  std::shared_ptr<const Body> body_;
   QString pattern_path_, body_path_;
 };
 

@@ -1,13 +1,14 @@
 // garment-studio: the desktop editor. Wiring only; the window lives in ui/.
 //
-//   garment-studio [PATTERN.json] [--body BODY.obj] [--select PIECE]
+//   garment-studio [PATTERN.json] [--body BODY.obj] [--select PIECE] [--location NAME]
 //                  [--screenshot OUT.png [--after-ms N]] [--size WIDTHxHEIGHT]
-// Without a pattern the bundled demo opens. --screenshot saves the window after N ms (default
-// 1500) and exits (0 saved, 1 not saved, 2 bad arguments, 3 a file failed to open), with fresh
-// settings.
+// Without a pattern the bundled demo opens, without a body the bundled default body. --screenshot
+// saves the window after N ms (default 1500) and exits (0 saved, 1 not saved, 2 bad arguments, 3 a
+// file failed to open), with fresh settings.
 
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QListWidget>
 #include <QRegularExpression>
 #include <QSettings>
 #include <QTemporaryDir>
@@ -31,11 +32,14 @@ int main(int argc, char** argv) {
                                "GarmentCode pattern (.json); the bundled demo if absent.");
   const QCommandLineOption body_option("body", "Body mesh (.obj).", "file");
   const QCommandLineOption select_option("select", "Select the piece of this name.", "piece");
+  const QCommandLineOption location_option("location", "Highlight the body location of this name.",
+                                           "location");
   const QCommandLineOption screenshot_option("screenshot", "Save the window as PNG and exit.",
                                              "file");
   const QCommandLineOption after_option("after-ms", "Delay before the screenshot.", "ms", "1500");
   const QCommandLineOption size_option("size", "Window size, e.g. 1440x900.", "size");
-  parser.addOptions({body_option, select_option, screenshot_option, after_option, size_option});
+  parser.addOptions(
+      {body_option, select_option, location_option, screenshot_option, after_option, size_option});
   parser.process(application);
 
   bool delay_ok = false;
@@ -64,12 +68,20 @@ int main(int argc, char** argv) {
   if (size.hasMatch()) window.resize(size.captured(1).toInt(), size.captured(2).toInt());
 
   const QStringList positional = parser.positionalArguments();
-  bool opened = positional.isEmpty() ? window.openDemo() : window.openPattern(positional.front());
-  if (parser.isSet(body_option)) opened = window.openBody(parser.value(body_option)) && opened;
+  bool opened =
+      positional.isEmpty() ? window.openDemoPattern() : window.openPattern(positional.front());
+  opened = (parser.isSet(body_option) ? window.openBody(parser.value(body_option))
+                                      : window.openDefaultBody()) &&
+           opened;
   if (parser.isSet(select_option) && window.garment()) {
     const int piece =
         window.garment()->pattern.panel_index(parser.value(select_option).toStdString());
     if (piece >= 0) window.selectPieces({piece});
+  }
+  if (parser.isSet(location_option)) {
+    const QList<QListWidgetItem*> found =
+        window.locationList()->findItems(parser.value(location_option), Qt::MatchExactly);
+    if (!found.isEmpty()) window.locationList()->setCurrentItem(found.front());
   }
   window.show();
   if (scripted && !opened) return 3;

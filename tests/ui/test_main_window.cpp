@@ -13,6 +13,7 @@
 #include <QTimer>
 #include <QtTest>
 
+#include "engine/body/default_body.h"
 #include "support/test_paths.h"
 #include "tests/ui/ui_test_support.h"
 #include "ui/arrangement_order_list.h"
@@ -33,16 +34,8 @@ QString test_pattern(const char* name) {
   return QString::fromStdString(test::test_data(std::filesystem::path("patterns") / name).string());
 }
 
-// A closed cube as an OBJ file (metres, 1.7 m tall so that it reads as a body).
-QString write_box_obj(const QTemporaryDir& directory) {
-  const QString path = directory.filePath("box.obj");
-  QFile file(path);
-  if (!file.open(QIODevice::WriteOnly)) return {};
-  file.write(
-      "v -0.2 0 -0.15\nv 0.2 0 -0.15\nv 0.2 1.7 -0.15\nv -0.2 1.7 -0.15\n"
-      "v -0.2 0 0.15\nv 0.2 0 0.15\nv 0.2 1.7 0.15\nv -0.2 1.7 0.15\n"
-      "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n");
-  return path;
+QString default_body() {
+  return QString::fromStdString(default_body_path().string());
 }
 
 void drop_files(QWidget& target, const QStringList& paths) {
@@ -69,15 +62,17 @@ class MainWindowTest : public QObject {
   CapturedErrors errors_;
 
  private slots:
+  // Every test starts from a fresh window showing the demo pattern (without the body, which
+  // takes a second to load: the tests that need one open it).
   void init() {
-    ui::RecentFiles::clear();
     window_ = std::make_unique<ui::MainWindow>();
     errors_ = {};
     window_->setErrorPresenter([this](const QString& title, const QString& message) {
       errors_.titles << title;
       errors_.messages << message;
     });
-    QVERIFY(window_->openDemo());
+    QVERIFY(window_->openDemoPattern());
+    ui::RecentFiles::clear();
     window_->show();
     QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
   }
@@ -85,15 +80,23 @@ class MainWindowTest : public QObject {
   void cleanup() { window_.reset(); }
 
   void opensWithTheDemo() {
-    QVERIFY(window_->garment());
-    QCOMPARE(window_->garment()->pieces.size(), std::size_t(8));
-    QVERIFY(window_->windowTitle().contains("demo_pattern.json"));
-    QVERIFY(window_->patternView()->pieceAt(window_->patternView()->pieceLabelPosition(0)) == 0);
-    // The demo is not a recent file.
+    ui::MainWindow window;
+    QVERIFY(window.openDemoPattern());
+    QVERIFY(window.openDefaultBody());
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QVERIFY(window.garment());
+    QCOMPARE(window.garment()->pieces.size(), std::size_t(8));
+    QVERIFY(window.body());
+    QVERIFY(window.windowTitle().contains("demo_pattern.json"));
+    QVERIFY(window.windowTitle().contains("mean_all.obj"));
+    QCOMPARE(window.patternView()->pieceAt(window.patternView()->pieceLabelPosition(0)), 0);
+    // Bundled files are not recent files.
     QVERIFY(ui::RecentFiles::load().isEmpty());
+
     // Before any arrangement the 3D view shows the pieces flat where the file puts them: the
     // front pieces (in front of the body, facing the camera) show their outside colour.
-    ui::AvatarView* avatar = window_->avatarView();
+    ui::AvatarView* avatar = window.avatarView();
     QVERIFY(avatar->garmentShown());
     avatar->setOrbit(0, 0);
     avatar->frameAll();
@@ -101,6 +104,28 @@ class MainWindowTest : public QObject {
     const QImage front = avatar->grabFramebuffer();
     GARMENT_VERIFY_IMAGE(test::count_pixels(front, test::looks_outside) > 1000, front,
                          "main_window_demo_flat");
+    const QColor background = avatar->colours().background;
+    GARMENT_VERIFY_IMAGE(test::count_pixels(front,
+                                            [&](QColor c) {
+                                              return !test::looks_outside(c) &&
+                                                     !test::colours_close(c, background, 10);
+                                            }) > 5000,
+                         front, "main_window_demo_body");
+
+    // The body's 15 locations are listed; choosing one highlights its marker.
+    QCOMPARE(window.locationList()->count(), 15);
+    QCOMPARE(window.locationList()->item(0)->text(), QString("neck"));
+    QSignalSpy location(&window, &ui::MainWindow::bodyLocationSelected);
+    window.locationList()->setCurrentRow(3);  // waist
+    QCOMPARE(location.count(), 1);
+    QCOMPARE(location.takeFirst().at(0).toInt(), 3);
+    QCOMPARE(avatar->highlightedLocation(), 3);
+    QCoreApplication::processEvents();
+    const QImage highlighted = avatar->grabFramebuffer();
+    const QPoint waist = avatar->projectToView(window.body()->locations[3].center).toPoint();
+    GARMENT_VERIFY_IMAGE(test::colours_close(highlighted.pixelColor(waist),
+                                             avatar->colours().highlighted_marker, 12),
+                         highlighted, "main_window_location_highlight");
   }
 
   void pickingSelectsInBothViews() {
@@ -151,7 +176,7 @@ class MainWindowTest : public QObject {
   void badFileShowsAMessageBox() {
     // The default presenter: a modal QMessageBox, closed here as soon as it shows.
     ui::MainWindow window;
-    QVERIFY(window.openDemo());
+    QVERIFY(window.openDemoPattern());
     QString shown_text;
     QTimer closer;
     connect(&closer, &QTimer::timeout, [&] {
@@ -168,16 +193,16 @@ class MainWindowTest : public QObject {
   }
 
   void bodyOpensAndBadBodyIsReported() {
-    QTemporaryDir directory;
-    const QString box = write_box_obj(directory);
     QSignalSpy body_opened(window_.get(), &ui::MainWindow::bodyOpened);
-    QVERIFY2(window_->openBody(box), qPrintable(errors_.messages.join("\n")));
+    QVERIFY2(window_->openBody(default_body()), qPrintable(errors_.messages.join("\n")));
     QCOMPARE(body_opened.count(), 1);
     QVERIFY(window_->body());
-    QCOMPARE(window_->body()->vertices.rows(), Eigen::Index(8));
-    QVERIFY(window_->windowTitle().contains("box.obj"));
+    QCOMPARE(window_->body()->locations.size(), std::size_t(15));
+    QVERIFY(window_->windowTitle().contains("mean_all.obj"));
+    QCOMPARE(ui::RecentFiles::load(), QStringList({QFileInfo(default_body()).absoluteFilePath()}));
 
     const auto before = window_->body();
+    QTemporaryDir directory;
     QFile garbage(directory.filePath("broken.obj"));
     QVERIFY(garbage.open(QIODevice::WriteOnly));
     garbage.write("v 0 0 0\nf 1 2 3\n");
@@ -186,27 +211,18 @@ class MainWindowTest : public QObject {
     QCOMPARE(window_->body(), before);
     QCOMPARE(errors_.messages.size(), 1);
     QVERIFY2(errors_.messages[0].contains("broken.obj"), qPrintable(errors_.messages[0]));
-
-    // The body shows in the 3D view.
-    const QImage image = window_->avatarView()->grabFramebuffer();
-    const QColor background = window_->avatarView()->colours().background;
-    GARMENT_VERIFY_IMAGE(
-        test::count_pixels(
-            image, [&](QColor c) { return !test::colours_close(c, background, 10); }) > 1000,
-        image, "main_window_body");
+    QVERIFY(window_->windowTitle().contains("mean_all.obj"));
+    QCOMPARE(window_->locationList()->count(), 15);
   }
 
   void droppedFilesOpen() {
-    QTemporaryDir directory;
-    const QString box = write_box_obj(directory);
-    drop_files(*window_, {test_pattern("basic_tee__tee.json"), box});
+    drop_files(*window_, {test_pattern("basic_tee__tee.json"), default_body()});
     QVERIFY(errors_.messages.isEmpty());
-    QCOMPARE(QString::fromStdString(window_->garment()->pattern.source).contains("basic_tee"),
-             true);
+    QVERIFY(QString::fromStdString(window_->garment()->pattern.source).contains("basic_tee"));
     QVERIFY(window_->body());
     // Only patterns and bodies are taken.
     QMimeData other;
-    other.setUrls({QUrl::fromLocalFile(directory.filePath("notes.txt"))});
+    other.setUrls({QUrl::fromLocalFile("/tmp/notes.txt")});
     QDragEnterEvent enter(QPoint(10, 10), Qt::CopyAction, &other, Qt::LeftButton, Qt::NoModifier);
     QApplication::sendEvent(window_.get(), &enter);
     QVERIFY(!enter.isAccepted());
