@@ -85,23 +85,20 @@ void Assembler::compile_quadratic(const std::vector<Potential*>& quadratic,
 void Assembler::prepare(const std::vector<Potential*>& potentials, const ActiveSet& active,
                         const Positions& x) {
   vertex_count_ = active.vertex_count();
-  const std::size_t values = 3 * static_cast<std::size_t>(vertex_count_);
+  const std::size_t rows = static_cast<std::size_t>(vertex_count_);
 
   std::vector<Potential*> quadratic;
   scattering_.clear();
   std::size_t work = 0;
-  current_diagonal_ = lagged_diagonal_ = false;
-  std::vector<char> touched(static_cast<std::size_t>(vertex_count_), 0);
+  std::vector<char> touched(rows, 0);
   for (Potential* potential : potentials) {
     potential->mark_touched_vertices(touched);
     if (potential->is_quadratic()) {
       quadratic.push_back(potential);
-      continue;
+    } else {
+      scattering_.push_back(potential);
+      work += static_cast<std::size_t>(potential->element_count());
     }
-    scattering_.push_back(potential);
-    work += static_cast<std::size_t>(potential->element_count());
-    current_diagonal_ = current_diagonal_ || potential->diagonal_kind() == DiagonalKind::Current;
-    lagged_diagonal_ = lagged_diagonal_ || potential->diagonal_kind() == DiagonalKind::Lagged;
   }
   touched_free_.clear();
   touched_fixed_.clear();
@@ -114,40 +111,31 @@ void Assembler::prepare(const std::vector<Potential*>& potentials, const ActiveS
 
   block_count_ =
       static_cast<int>(std::clamp<std::size_t>(work / kMinWorkPerBlock, 1, usable_threads()));
-  const auto allocate = [&](std::vector<std::vector<double>>& buffers, bool needed) {
-    buffers.resize(needed ? static_cast<std::size_t>(block_count_) : 0);
-    for (auto& buffer : buffers)
-      buffer.assign(values, 0.0);
-  };
-  allocate(gradient_buffers_, !scattering_.empty());
-  allocate(current_buffers_, current_diagonal_);
-  allocate(lagged_buffers_, lagged_diagonal_);
-  lagged_diagonal_values_.assign(lagged_diagonal_ ? values : 0, 0.0);
-  refreshing_lagged_ = false;
+  buffers_.resize(scattering_.empty() ? 0 : static_cast<std::size_t>(block_count_));
+  for (auto& buffer : buffers_)
+    buffer.assign(6 * rows, 0.0);
   block_energy_.assign(static_cast<std::size_t>(block_count_), 0.0);
 
   // Constant diagonals, once: K's diagonal, and the constant-kind potentials evaluated through
-  // the same accumulate with a scratch gradient.
-  constant_diagonal_.assign(values, 0.0);
-  for (int v = 0; v < vertex_count_; ++v)
-    for (int c = 0; c < 3; ++c)
-      constant_diagonal_[3 * static_cast<std::size_t>(v) + c] = k_diagonal_[v];
-  std::vector<double> scratch(values, 0.0);
-  const Accumulator out{scratch.data(), constant_diagonal_.data()};
+  // the same accumulate into a scratch buffer.
+  constant_diagonal_.assign(3 * rows, 0.0);
+  std::vector<double> scratch(6 * rows, 0.0);
   for (Potential* potential : scattering_) {
     if (potential->diagonal_kind() != DiagonalKind::Constant) continue;
     potential->begin_evaluation(x, 0);
-    potential->accumulate(x, 0, potential->element_count(), out);
+    potential->accumulate(x, 0, potential->element_count(), {scratch.data(), true});
   }
+  for (std::size_t v = 0; v < rows; ++v)
+    for (int c = 0; c < 3; ++c)
+      constant_diagonal_[3 * v + c] = k_diagonal_[v] + scratch[6 * v + 3 + c];
 }
 
 double Assembler::accumulate(const Positions& x, int iteration, bool with_quadratic_energy,
-                             bool refresh_lagged_diagonal, bool* landscape_changed) {
+                             bool* landscape_changed) {
   bool changed = false;
   for (Potential* potential : scattering_)
     changed = potential->begin_evaluation(x, iteration) || changed;
   if (landscape_changed) *landscape_changed = changed;
-  refreshing_lagged_ = lagged_diagonal_ && refresh_lagged_diagonal;
 
   const int blocks = block_count_;
   const auto run_block = [&](int b) {
@@ -157,29 +145,19 @@ double Assembler::accumulate(const Positions& x, int iteration, bool with_quadra
       const int begin = static_cast<int>(count * b / blocks);
       const int end = static_cast<int>(count * (b + 1) / blocks);
       if (begin >= end) continue;
-      double* diagonal = nullptr;
-      switch (potential->diagonal_kind()) {
-        case DiagonalKind::Constant:
-          break;
-        case DiagonalKind::Lagged:
-          if (refreshing_lagged_) diagonal = lagged_buffers_[b].data();
-          break;
-        case DiagonalKind::Current:
-          diagonal = current_buffers_[b].data();
-          break;
-      }
-      energy += potential->accumulate(x, begin, end, {gradient_buffers_[b].data(), diagonal});
+      const bool wants_diagonal = potential->diagonal_kind() == DiagonalKind::Current;
+      energy += potential->accumulate(x, begin, end, {buffers_[b].data(), wants_diagonal});
     }
     block_energy_[b] = energy;
   };
+  double total = 0.0;
   if (!scattering_.empty()) {
     run_blocks(
         blocks, [](void* context, int b) { (*static_cast<decltype(run_block)*>(context))(b); },
         const_cast<void*>(static_cast<const void*>(&run_block)));
+    for (int b = 0; b < blocks; ++b)
+      total += block_energy_[b];
   }
-  double total = 0.0;
-  for (int b = 0; b < blocks && !scattering_.empty(); ++b)
-    total += block_energy_[b];
   if (with_quadratic_energy && has_quadratic_) total += quadratic_energy(x);
   return total;
 }
@@ -216,15 +194,13 @@ std::size_t Assembler::bytes_per_evaluation() const {
     bytes += potential->element_bytes();
   const std::size_t touched = touched_free_.size() + touched_fixed_.size();
   const std::size_t row = 3 * sizeof(double);
-  // Positions read once; K (column + value per entry, diagonal and b per row); every block
-  // buffer written in pass 1 and read + cleared in pass 2.
-  bytes += touched * row;
+  // Positions read once; K (column + value per entry; diagonal, row bounds and b per row); the
+  // constant diagonal; every block buffer row written in pass 1, read and cleared in pass 2.
+  bytes += touched * row + touched_free_.size() * row;
   if (has_quadratic_)
     bytes += k_values_.size() * (sizeof(int) + sizeof(double)) +
              touched_free_.size() * (2 * sizeof(int) + sizeof(double) + row);
-  const std::size_t buffers = (scattering_.empty() ? 0 : 1) + (current_diagonal_ ? 1 : 0);
-  bytes += touched * row * 2 * buffers * static_cast<std::size_t>(block_count_);
-  bytes += touched_free_.size() * row * (lagged_diagonal_ ? 2 : 1);  // constant + lagged diagonal
+  bytes += touched * 2 * row * 2 * buffers_.size();
   return bytes;
 }
 

@@ -2,17 +2,15 @@
 // The one parallel assembler every potential goes through. An evaluation is two passes:
 //   1. accumulate: the selected elements of every non-quadratic potential are split into B
 //      contiguous blocks (B = usable threads); block b runs on one thread and adds into its own
-//      #V×3 buffers, so no two threads write the same memory and the sums do not depend on
-//      scheduling;
+//      #V×6 buffer (gradient and Hessian diagonal), so no two threads write the same memory and
+//      the sums do not depend on scheduling;
 //   2. gather: for every free vertex an element touched, the B buffer rows are summed (in block
 //      order: deterministic for a given thread count) and cleared, the row of the merged quadratic
 //      matrix K is applied (K x − b, quadratic_terms.h), and the caller's per-vertex function
 //      receives the total gradient and Hessian diagonal — the solver fuses its update into this
 //      pass. Blocks of vertices run in parallel; every vertex is written by one thread only.
-// Diagonals are assembled as each potential needs (DiagonalKind): constant ones once per bind,
-// lagged ones when asked (the solver asks at its batch boundaries), current ones every time.
 // bench_solver_assembly compares this with the alternatives (per-vertex recomputation, element
-// results gathered through an incidence list) on 2k and 20k vertices.
+// results gathered through an incidence list; per-stencil bending against the merged K).
 
 #include <cstddef>
 #include <cstdint>
@@ -31,10 +29,10 @@ class Assembler {
 
   // Pass 1. Returns the energy of the non-quadratic potentials at x, plus that of the quadratic
   // ones when with_quadratic_energy (an extra pass over K: the solver needs the energy only at its
-  // batch boundaries). Recomputes the lagged diagonals when refresh_lagged_diagonal. Sets
-  // *landscape_changed when a potential refreshed its elements (Potential::begin_evaluation).
+  // batch boundaries). Sets *landscape_changed when a potential refreshed its elements
+  // (Potential::begin_evaluation).
   double accumulate(const Positions& x, int iteration, bool with_quadratic_energy,
-                    bool refresh_lagged_diagonal, bool* landscape_changed = nullptr);
+                    bool* landscape_changed = nullptr);
 
   // Pass 2 (after accumulate, with the same x). Calls visit(vertex, gradient, hessian_diagonal)
   // for every free vertex an element touches, from several threads on disjoint vertices, and
@@ -56,22 +54,16 @@ class Assembler {
   // Not a template so that TBB stays out of this header (its `emit` clashes with Qt's macro).
   static void run_blocks(int blocks, void (*block)(void*, int), void* context);
   void compile_quadratic(const std::vector<Potential*>& quadratic, const ActiveSet& active);
-  // K x − b at a free vertex (row of the merged quadratic potentials).
+  // K x − b at a vertex (its row of the merged quadratic potentials).
   Eigen::Vector3d quadratic_gradient(const Positions& x, int vertex) const;
 
   std::vector<Potential*> scattering_;  // non-quadratic potentials
   int vertex_count_ = 0;
   int block_count_ = 1;
-  bool current_diagonal_ = false;  // some potential's diagonal is DiagonalKind::Current
-  bool lagged_diagonal_ = false;
-  bool refreshing_lagged_ = false;  // the last accumulate refreshed the lagged diagonals
-  std::vector<std::vector<double>> gradient_buffers_;  // per block, #V×3 row-major
-  std::vector<std::vector<double>> current_buffers_;   // per block, when current_diagonal_
-  std::vector<std::vector<double>> lagged_buffers_;    // per block, when lagged_diagonal_
-  std::vector<double> constant_diagonal_;              // #V×3
-  std::vector<double> lagged_diagonal_values_;         // #V×3, as of the last refresh
-  std::vector<int> touched_free_;                      // free vertices some element writes
-  std::vector<int> touched_fixed_;                     // other vertices some element writes
+  std::vector<std::vector<double>> buffers_;  // per block, #V×6: gradient, Hessian diagonal
+  std::vector<double> constant_diagonal_;     // #V×3
+  std::vector<int> touched_free_;             // free vertices some element writes
+  std::vector<int> touched_fixed_;            // other vertices some element writes
   // K in compressed rows, diagonal apart: row v's free columns are [start[v], middle[v]), its
   // fixed columns [middle[v], start[v + 1]).
   bool has_quadratic_ = false;
@@ -104,52 +96,38 @@ double Assembler::gather(const Positions& x, Visit&& visit) {
   const int fixed_count = static_cast<int>(touched_fixed_.size());
   const bool scatter = !scattering_.empty();
   block_sums_.assign(static_cast<std::size_t>(blocks), 0.0);
-  const auto clear_and_add = [&](std::vector<std::vector<double>>& buffers, std::ptrdiff_t row,
-                                 Eigen::Vector3d* sum) {
-    for (auto& buffer : buffers) {
-      Eigen::Map<Eigen::Vector3d> rows(buffer.data() + row);
-      if (sum) *sum += rows;
-      rows.setZero();
-    }
-  };
   const auto run_block = [&](int b) {
     double sum = 0.0;
     const int begin = static_cast<int>(static_cast<long long>(free_count) * b / blocks);
     const int end = static_cast<int>(static_cast<long long>(free_count) * (b + 1) / blocks);
     for (int i = begin; i < end; ++i) {
       const int vertex = touched_free_[i];
-      const std::ptrdiff_t row = 3 * static_cast<std::ptrdiff_t>(vertex);
       Eigen::Vector3d gradient =
           has_quadratic_ ? quadratic_gradient(x, vertex) : Eigen::Vector3d::Zero();
-      Eigen::Vector3d diagonal = Eigen::Vector3d::Map(constant_diagonal_.data() + row);
-      if (scatter) clear_and_add(gradient_buffers_, row, &gradient);
-      if (lagged_diagonal_) {
-        Eigen::Map<Eigen::Vector3d> lagged(lagged_diagonal_values_.data() + row);
-        if (refreshing_lagged_) {
-          Eigen::Vector3d fresh = Eigen::Vector3d::Zero();
-          clear_and_add(lagged_buffers_, row, &fresh);
-          lagged = fresh;
-        }
-        diagonal += lagged;
+      Eigen::Vector3d diagonal =
+          Eigen::Vector3d::Map(constant_diagonal_.data() + 3 * static_cast<std::ptrdiff_t>(vertex));
+      for (int k = 0; scatter && k < blocks; ++k) {
+        Eigen::Map<Eigen::Matrix<double, 6, 1>> row(buffers_[k].data() +
+                                                    6 * static_cast<std::ptrdiff_t>(vertex));
+        gradient += row.head<3>();
+        diagonal += row.tail<3>();
+        row.setZero();
       }
-      if (current_diagonal_) clear_and_add(current_buffers_, row, &diagonal);
       sum += visit(vertex, gradient, diagonal);
     }
     // Rows of fixed vertices were written but are not wanted: clear them.
     const int fixed_begin = static_cast<int>(static_cast<long long>(fixed_count) * b / blocks);
     const int fixed_end = static_cast<int>(static_cast<long long>(fixed_count) * (b + 1) / blocks);
-    for (int i = fixed_begin; scatter && i < fixed_end; ++i) {
-      const std::ptrdiff_t row = 3 * static_cast<std::ptrdiff_t>(touched_fixed_[i]);
-      clear_and_add(gradient_buffers_, row, nullptr);
-      if (current_diagonal_) clear_and_add(current_buffers_, row, nullptr);
-      if (lagged_diagonal_ && refreshing_lagged_) clear_and_add(lagged_buffers_, row, nullptr);
-    }
+    for (int i = fixed_begin; scatter && i < fixed_end; ++i)
+      for (int k = 0; k < blocks; ++k)
+        Eigen::Map<Eigen::Matrix<double, 6, 1>>(buffers_[k].data() +
+                                                6 * static_cast<std::ptrdiff_t>(touched_fixed_[i]))
+            .setZero();
     block_sums_[b] = sum;
   };
   run_blocks(
       blocks, [](void* context, int b) { (*static_cast<decltype(run_block)*>(context))(b); },
       const_cast<void*>(static_cast<const void*>(&run_block)));
-  refreshing_lagged_ = false;
   double total = 0.0;
   for (double s : block_sums_)
     total += s;

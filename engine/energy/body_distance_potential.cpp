@@ -88,7 +88,7 @@ double BodyDistancePotential::accumulate(const Positions& x, int begin, int end,
     const double offset = phi - distance_;
     energy += 0.5 * k * offset * offset;
     out.gradient_row(v) += (k * offset) * grad_phi;
-    if (out.hessian_diagonal) out.diagonal_row(v) += k * grad_phi.cwiseProduct(grad_phi);
+    if (out.wants_diagonal) out.diagonal_row(v) += k * grad_phi.cwiseProduct(grad_phi);
   }
   return energy;
 }

@@ -36,7 +36,7 @@ double BodyRepulsionPotential::accumulate(const Positions& x, int begin, int end
     if (depth >= 0.0) continue;
     energy += 0.5 * k * depth * depth;
     out.gradient_row(v) += (k * depth) * grad_phi;
-    if (out.hessian_diagonal) out.diagonal_row(v) += k * grad_phi.cwiseProduct(grad_phi);
+    if (out.wants_diagonal) out.diagonal_row(v) += k * grad_phi.cwiseProduct(grad_phi);
   }
   return energy;
 }

@@ -44,7 +44,7 @@ double CentringPotential::accumulate(const Positions& x, int begin, int end,
   const Eigen::Vector3d gradient = stiffness_ * offset_ / count;  // ∂/∂x_i of ½k|x_c − x_c⁰|²
   for (int e = begin; e < end; ++e) {
     out.gradient_row(free_[e]) += gradient;
-    if (out.hessian_diagonal) out.diagonal_row(free_[e]).array() += stiffness_ / (count * count);
+    if (out.wants_diagonal) out.diagonal_row(free_[e]).array() += stiffness_ / (count * count);
   }
   // The term is one number for the whole set: the block holding element 0 reports it.
   return begin == 0 ? 0.5 * stiffness_ * offset_.squaredNorm() : 0.0;

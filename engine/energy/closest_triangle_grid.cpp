@@ -12,6 +12,7 @@ namespace {
 constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
 constexpr int kCoordinateBits = 21;
 constexpr int kCoordinateOffset = 1 << (kCoordinateBits - 1);
+constexpr long long kMaxCellsPerTriangle = 512;
 
 std::uint64_t mix(std::uint64_t key) {
   return key * 0x9E3779B97F4A7C15ull;
@@ -47,6 +48,7 @@ void ClosestTriangleGrid::build(const Positions& x, const Eigen::MatrixX3i& tria
   const std::size_t count = ids_.size();
   lower_.resize(count);
   upper_.resize(count);
+  oversized_.clear();
   std::vector<std::pair<std::uint64_t, int>> entries;
   entries.reserve(count * 4);
   for (std::size_t i = 0; i < count; ++i) {
@@ -56,6 +58,14 @@ void ClosestTriangleGrid::build(const Positions& x, const Eigen::MatrixX3i& tria
     const Eigen::Vector3d c = x.row(triangles(t, 2)).transpose();
     lower_[i] = a.cwiseMin(b).cwiseMin(c);
     upper_[i] = a.cwiseMax(b).cwiseMax(c);
+    const Eigen::Vector3d extent = (upper_[i] - lower_[i]) / cell_size_ + Eigen::Vector3d::Ones();
+    if (!(lower_[i].allFinite() && upper_[i].allFinite() &&
+          extent.prod() <= static_cast<double>(kMaxCellsPerTriangle) &&
+          (lower_[i].cwiseAbs().array() / cell_size_ < kCoordinateOffset / 2).all() &&
+          (upper_[i].cwiseAbs().array() / cell_size_ < kCoordinateOffset / 2).all())) {
+      oversized_.push_back(static_cast<int>(i));
+      continue;
+    }
     const Eigen::Vector3i from = cell_of(lower_[i]), to = cell_of(upper_[i]);
     for (int cz = from.z(); cz <= to.z(); ++cz)
       for (int cy = from.y(); cy <= to.y(); ++cy)
@@ -86,11 +96,37 @@ void ClosestTriangleGrid::build(const Positions& x, const Eigen::MatrixX3i& tria
 }
 
 ClosestTriangleGrid::Hit ClosestTriangleGrid::closest(const Positions& x, const Eigen::Vector3d& p,
-                                                      double radius, int skip_vertex) const {
+                                                      double radius, int skip_vertex,
+                                                      int hint) const {
   Hit best;
-  if (ids_.empty()) return best;
+  if (ids_.empty() || !p.allFinite()) return best;
   const Eigen::MatrixX3i& triangles = *triangles_;
   double best_squared = radius * radius;
+  const auto consider = [&](int t) {
+    const int i = triangles(t, 0), j = triangles(t, 1), k = triangles(t, 2);
+    if (i == skip_vertex || j == skip_vertex || k == skip_vertex) return;
+    const Eigen::Vector3d a = x.row(i).transpose(), b = x.row(j).transpose(),
+                          c = x.row(k).transpose();
+    const Eigen::Vector3d weights = closest_point_weights(p, a, b, c);
+    const double squared =
+        (p - (weights.x() * a + weights.y() * b + weights.z() * c)).squaredNorm();
+    if (squared < best_squared) {
+      best_squared = squared;
+      best.triangle = t;
+      best.weights = weights;
+    }
+  };
+  const auto consider_item = [&](int item) {
+    const Eigen::Vector3d outside = (lower_[item] - p).cwiseMax(p - upper_[item]).cwiseMax(0.0);
+    if (outside.squaredNorm() < best_squared) consider(ids_[item]);
+  };
+  if (hint >= 0) consider(hint);
+  for (int item : oversized_)
+    consider_item(item);
+  if ((p.cwiseAbs().array() / cell_size_ >= kCoordinateOffset / 2).any()) {
+    if (best.triangle >= 0) best.distance = std::sqrt(best_squared);
+    return best;  // beyond the grid's keys: only the hint and the oversized triangles
+  }
   const Eigen::Vector3i centre = cell_of(p);
   const int max_shell = static_cast<int>(std::ceil(radius / cell_size_));
   for (int shell = 0; shell <= max_shell; ++shell) {
@@ -98,34 +134,27 @@ ClosestTriangleGrid::Hit ClosestTriangleGrid::closest(const Positions& x, const 
       for (int dy = -shell; dy <= shell; ++dy) {
         for (int dx = -shell; dx <= shell; ++dx) {
           if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != shell) continue;
-          const int slot = find_slot(key(centre + Eigen::Vector3i(dx, dy, dz)));
+          const Eigen::Vector3i cell = centre + Eigen::Vector3i(dx, dy, dz);
+          const Eigen::Vector3d cell_lower = cell.cast<double>() * cell_size_;
+          const Eigen::Vector3d outside =
+              (cell_lower - p)
+                  .cwiseMax(p - (cell_lower.array() + cell_size_).matrix())
+                  .cwiseMax(0.0);
+          if (outside.squaredNorm() >= best_squared) continue;  // the cell is too far
+          const int slot = find_slot(key(cell));
           if (slot < 0) continue;
-          for (int s = slot_start_[slot]; s < slot_start_[slot + 1]; ++s) {
-            const int item = items_[s];
-            const Eigen::Vector3d outside =
-                (lower_[item] - p).cwiseMax(p - upper_[item]).cwiseMax(0.0);
-            if (outside.squaredNorm() >= best_squared) continue;
-            const int t = ids_[item];
-            const int i = triangles(t, 0), j = triangles(t, 1), k = triangles(t, 2);
-            if (i == skip_vertex || j == skip_vertex || k == skip_vertex) continue;
-            const Eigen::Vector3d a = x.row(i).transpose(), b = x.row(j).transpose(),
-                                  c = x.row(k).transpose();
-            const Eigen::Vector3d weights = closest_point_weights(p, a, b, c);
-            const double squared =
-                (p - (weights.x() * a + weights.y() * b + weights.z() * c)).squaredNorm();
-            if (squared < best_squared) {
-              best_squared = squared;
-              best.triangle = t;
-              best.weights = weights;
-            }
-          }
+          for (int s = slot_start_[slot]; s < slot_start_[slot + 1]; ++s)
+            consider_item(items_[s]);
         }
       }
     }
-    const double reach = shell * cell_size_;
-    if (best.triangle >= 0 && best_squared <= reach * reach) break;
+    // Everything not seen yet lies outside the visited block of cells.
+    const Eigen::Vector3d lower = (centre.array() - shell).cast<double>() * cell_size_;
+    const Eigen::Vector3d upper = (centre.array() + shell + 1).cast<double>() * cell_size_;
+    const double reach = (p - lower).cwiseMin(upper - p).minCoeff();
+    if (best_squared <= reach * reach) break;
   }
-  best.distance = std::sqrt(best_squared);
+  if (best.triangle >= 0) best.distance = std::sqrt(best_squared);
   return best;
 }
 

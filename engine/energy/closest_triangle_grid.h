@@ -2,9 +2,11 @@
 // Closest-triangle queries for one-sided self repulsion (paper Eq. 12): a uniform hash grid over
 // a triangle set, rebuilt from current positions at every refresh. Each triangle is listed in
 // every cell its bounding box overlaps; a query walks cell shells outwards from the query point
-// and stops once no unvisited cell can hold anything closer. Chosen over a CGAL AABB tree after
-// measuring both (bench_solver_closest_triangle): the arrangement asks for nearby triangles only
-// (a search radius of a few centimetres), where the grid builds and answers faster.
+// and stops once no unvisited cell can hold anything closer. A hint (the triangle found at the
+// last refresh) starts the search with a small bound, so that usually the query point's own cell
+// settles it. Chosen over a CGAL AABB tree after measuring both (bench_solver_closest_triangle):
+// for nearby triangles (a search radius of a few centimetres) the grid builds several times
+// faster and, with hints, answers faster too.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -26,8 +28,9 @@ class ClosestTriangleGrid {
     double distance = 0.0;
   };
   // The closest indexed triangle within `radius` of p, ignoring triangles that have
-  // `skip_vertex` as a corner. Thread-safe (const).
-  Hit closest(const Positions& x, const Eigen::Vector3d& p, double radius, int skip_vertex) const;
+  // `skip_vertex` as a corner. `hint`: a triangle id likely to be close (or -1). Thread-safe.
+  Hit closest(const Positions& x, const Eigen::Vector3d& p, double radius, int skip_vertex,
+              int hint = -1) const;
 
   double cell_size() const { return cell_size_; }
 
@@ -44,6 +47,9 @@ class ClosestTriangleGrid {
   std::vector<std::uint64_t> slot_keys_;  // open addressing, power-of-two size
   std::vector<int> slot_start_;           // items_[slot_start_[s] .. slot_start_[s + 1])
   std::vector<int> items_;                // indices into ids_
+  // Triangles too large for the grid (bounding box over kMaxCellsPerTriangle cells, or not
+  // finite): checked by every query.
+  std::vector<int> oversized_;
 };
 
 }  // namespace garment

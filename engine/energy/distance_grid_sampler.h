@@ -26,24 +26,20 @@ class DistanceGridSampler {
   explicit DistanceGridSampler(const DistanceGrid& grid)
       : grid_(&grid),
         inverse_spacing_(1.0 / grid.spacing),
-        last_cell_(grid.size - Eigen::Vector3i::Constant(2)),
+        cell_end_((grid.size - Eigen::Vector3i::Ones()).cast<double>()),
         row_(grid.size.x()),
         plane_(static_cast<std::ptrdiff_t>(grid.size.x()) * grid.size.y()) {}
 
   double value_and_gradient(const Eigen::Vector3d& point, Eigen::Vector3d& gradient,
                             CellCache& cache) const {
     const Eigen::Vector3d local = (point - grid_->origin) * inverse_spacing_;
-    // Truncation is the floor for local ≥ 0 (x86-64 has no SSE2 floor instruction: std::floor
-    // would be a library call per axis).
-    if (!(local.array() >= 0.0).all()) {
+    // Inside the cells that have a +1 neighbour; truncation is then the floor (x86-64 has no
+    // SSE2 floor instruction: std::floor would be a library call per axis).
+    if (!((local.array() >= 0.0).all() && (local.array() < cell_end_.array()).all())) {
       cache.cell.setConstant(-1);
       return grid_->value_and_gradient(point, gradient);
     }
     const Eigen::Vector3i cell = local.cast<int>();
-    if (!(cell.array() <= last_cell_.array()).all()) {
-      cache.cell.setConstant(-1);
-      return grid_->value_and_gradient(point, gradient);
-    }
     const Eigen::Vector3d floor = cell.cast<double>();
     if (cell != cache.cell) {
       const float* c = grid_->values.data() + cell.z() * plane_ + cell.y() * row_ + cell.x();
@@ -71,7 +67,7 @@ class DistanceGridSampler {
  private:
   const DistanceGrid* grid_;
   double inverse_spacing_;
-  Eigen::Vector3i last_cell_;  // size − 2 per axis: the last cell with a +1 neighbour
+  Eigen::Vector3d cell_end_;  // size − 1 per axis: cells below it have a +1 neighbour
   std::ptrdiff_t row_, plane_;
 };
 

@@ -16,8 +16,9 @@ struct EnergyParameters {
   double stretch_stiffness = 1000.0;
   double dart_stiffness = 1000.0;
   // F^def: quadratic bending (Bergou et al. 2006), E = ½ k Σ 3/(A₀+A₁) |Σ Kᵢ xᵢ|², k in J.
-  // "Relatively high" (§5.2): a bending length (k / weight per area)^(1/3) of about 10 cm, five
-  // times real cloth, so the arrangement does not form fine wrinkles.
+  // "Relatively high" (§5.2): with the model's factor of ~3.3 over the continuum energy
+  // (bending_potential.h), a bending length (3.3 k / weight per area)^(1/3) of about 15 cm,
+  // several times real cloth's, so the arrangement does not form fine wrinkles.
   double bending_stiffness = 1.5e-3;
   // Initial alignment stiffens bending (§7.1) by this factor.
   double alignment_bending_factor = 10.0;
@@ -41,9 +42,10 @@ struct EnergyParameters {
   double repulsion_buffer = 0.004;
   double body_repulsion_stiffness = 1.0e4;
   double self_repulsion_stiffness = 1.0e3;
-  // F^self: a vertex is repelled by the closest arranged triangle within this distance, m, looked
-  // up again every this many iterations.
-  double self_repulsion_search_radius = 0.05;
+  // F^self: a vertex is repelled by the closest arranged triangle within this distance, m (five
+  // buffers: deeper intersections are left to post-processing, §7.3), looked up again every this
+  // many iterations.
+  double self_repulsion_search_radius = 0.02;
   int self_repulsion_refresh_interval = 16;
 };
 

@@ -50,7 +50,7 @@ double Objective::evaluate(const Eigen::MatrixX3d& x, Eigen::MatrixX3d* gradient
                            Eigen::MatrixX3d* hessian_diagonal, int iteration) {
   const Positions positions = to_positions(x);
   Assembler& assembler = assembler_for(positions);
-  const double energy = assembler.accumulate(positions, iteration, true, true);
+  const double energy = assembler.accumulate(positions, iteration, true);
   if (gradient) gradient->setZero(x.rows(), 3);
   if (hessian_diagonal) hessian_diagonal->setZero(x.rows(), 3);
   assembler.gather(positions, [&](int vertex, const Eigen::Vector3d& g, const Eigen::Vector3d& d) {
@@ -68,7 +68,7 @@ std::vector<PotentialEnergy> Objective::energies(const Eigen::MatrixX3d& x) {
   for (const auto& potential : potentials_) {
     Assembler alone;
     alone.prepare({potential.get()}, active_, positions);
-    result.push_back({potential->name(), alone.accumulate(positions, 0, true, false)});
+    result.push_back({potential->name(), alone.accumulate(positions, 0, true)});
   }
   return result;
 }

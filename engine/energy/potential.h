@@ -26,26 +26,28 @@ namespace garment {
 
 using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;  // #V×3
 
-// Where a range of elements adds its derivatives: row-major #V×3 arrays indexed by vertex id.
-// hessian_diagonal is null when the caller does not need it this time (see DiagonalKind). Rows of
-// vertices that are not free may be written; the caller ignores them.
+// Where a range of elements adds its derivatives: per vertex six doubles, the gradient then the
+// Hessian diagonal (interleaved, so that one cache line holds both). wants_diagonal is false when
+// the caller needs no diagonal this time (see DiagonalKind). Rows of vertices that are not free
+// may be written; the caller ignores them.
 struct Accumulator {
-  double* gradient = nullptr;
-  double* hessian_diagonal = nullptr;
+  double* rows = nullptr;  // #V×6
+  bool wants_diagonal = true;
 
   Eigen::Map<Eigen::Vector3d> gradient_row(int vertex) const {
-    return Eigen::Map<Eigen::Vector3d>(gradient + 3 * static_cast<std::ptrdiff_t>(vertex));
+    return Eigen::Map<Eigen::Vector3d>(rows + 6 * static_cast<std::ptrdiff_t>(vertex));
   }
   Eigen::Map<Eigen::Vector3d> diagonal_row(int vertex) const {
-    return Eigen::Map<Eigen::Vector3d>(hessian_diagonal + 3 * static_cast<std::ptrdiff_t>(vertex));
+    return Eigen::Map<Eigen::Vector3d>(rows + 6 * static_cast<std::ptrdiff_t>(vertex) + 3);
   }
 };
 
 // How often the Jacobi preconditioner needs a potential's Hessian diagonal.
 enum class DiagonalKind {
   Constant,  // independent of x: once per bind
-  Lagged,    // changes slowly (springs): at every solver batch boundary
-  Current,   // switches on and off (contacts): every evaluation
+  Current,   // depends on x: every evaluation. (Reusing a diagonal for a few iterations was
+             // tried for the springs: when contacts stretch them fast, the stale transverse
+             // stiffness lets steps explode.)
 };
 
 class Potential {
@@ -79,7 +81,7 @@ class Potential {
   virtual bool is_quadratic() const { return false; }
   virtual void add_quadratic_terms(QuadraticTerms& terms) const { (void)terms; }
 
-  // Other potentials: adds the gradient (and the Hessian diagonal when out.hessian_diagonal is
+  // Other potentials: adds the gradient (and the Hessian diagonal when out.wants_diagonal is
   // set) of the selected elements [begin, end) and returns their energy. Safe to call
   // concurrently on disjoint ranges with distinct accumulators.
   virtual double accumulate(const Positions& x, int begin, int end, const Accumulator& out) const {

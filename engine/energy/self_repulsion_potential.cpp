@@ -36,6 +36,7 @@ void SelfRepulsionPotential::bind_elements(const ActiveSet& active) {
   candidates_.clear();
   for (int v : vertices_)
     if (active.exists(v)) candidates_.push_back(v);
+  hints_.assign(candidates_.size(), -1);
   obstacles_.clear();
   for (int t : obstacle_triangles_)
     if (active.exists(triangles_(t, 0)) && active.exists(triangles_(t, 1)) &&
@@ -61,21 +62,21 @@ void SelfRepulsionPotential::refresh(const Positions& x) {
       for (int k = 0; k < 3; ++k)
         edge_sum += (x.row(triangles_(t, k)) - x.row(triangles_(t, (k + 1) % 3))).norm();
     const double mean_edge = edge_sum / (3.0 * static_cast<double>(obstacles_.size()));
-    // Cells of two mean edges hold a handful of triangles each (measured in
-    // bench_solver_closest_triangle); never finer than the search radius / 8.
-    grid_.build(x, triangles_, obstacles_, std::max(2.0 * mean_edge, settings_.search_radius / 8));
+    // Cells of four mean edges answer fastest (bench_solver_closest_triangle, 2k and 20k).
+    grid_.build(x, triangles_, obstacles_, 4.0 * mean_edge);
 
     std::vector<ClosestTriangleGrid::Hit> hits(candidates_.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates_.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t c = range.begin(); c != range.end(); ++c) {
                           const int v = candidates_[c];
-                          hits[c] =
-                              grid_.closest(x, x.row(v).transpose(), settings_.search_radius, v);
+                          hits[c] = grid_.closest(x, x.row(v).transpose(), settings_.search_radius,
+                                                  v, hints_[c]);
                         }
                       });
     for (std::size_t c = 0; c < candidates_.size(); ++c) {
       const ClosestTriangleGrid::Hit& hit = hits[c];
+      hints_[c] = hit.triangle;
       if (hit.triangle < 0) continue;
       const int v = candidates_[c];
       const std::array<int, 3> corners = {triangles_(hit.triangle, 0), triangles_(hit.triangle, 1),
@@ -111,7 +112,7 @@ double SelfRepulsionPotential::accumulate(const Positions& x, int begin, int end
     out.gradient_row(contact.vertex) += force;
     for (int c = 0; c < 3; ++c)
       out.gradient_row(contact.corners[c]) -= contact.weights[c] * force;
-    if (out.hessian_diagonal) {
+    if (out.wants_diagonal) {
       const Eigen::Vector3d n2 = k * contact.normal.cwiseProduct(contact.normal);
       out.diagonal_row(contact.vertex) += n2;
       for (int c = 0; c < 3; ++c)

@@ -65,6 +65,7 @@ class SelfRepulsionPotential : public Potential {
   SelfRepulsionSettings settings_;
   ActiveSet active_;             // copy of the bound set, to filter contacts
   std::vector<int> candidates_;  // existing vertices of the set
+  std::vector<int> hints_;       // per candidate, the triangle found last time, or -1
   std::vector<int> obstacles_;   // obstacle triangles whose corners all exist
   bool refreshed_ = false;
   ClosestTriangleGrid grid_;

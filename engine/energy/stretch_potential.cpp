@@ -21,7 +21,7 @@ inline double spring_energy(const Eigen::Vector3d& xi, const Eigen::Vector3d& xj
   }
   const double length = d.norm();
   const double stretch = length - rest;
-  if (length < 1e-12 * rest) {  // direction undefined: no force, the isotropic bound
+  if (!(length > 0.0)) {  // direction undefined: no force, the isotropic bound
     gradient_i.setZero();
     if (diagonal) diagonal->setConstant(k);
     return 0.5 * k * stretch * stretch;
@@ -86,7 +86,7 @@ double StretchPotential::accumulate(const Positions& x, int begin, int end,
                                     const Accumulator& out) const {
   double energy = 0.0;
   Eigen::Vector3d gradient, diagonal;
-  Eigen::Vector3d* const diagonal_out = out.hessian_diagonal ? &diagonal : nullptr;
+  Eigen::Vector3d* const diagonal_out = out.wants_diagonal ? &diagonal : nullptr;
   const double* const position = x.data();
   for (int s = begin; s < end; ++s) {
     const Spring& spring = active_[s];

@@ -64,9 +64,9 @@ SolveReport solve(Objective& objective, Eigen::MatrixX3d& positions, const Solve
     return std::sqrt(assembler.gather(
         x, [](int, const Eigen::Vector3d& g, const Eigen::Vector3d&) { return g.squaredNorm(); }));
   };
-  // The energy is needed at batch boundaries only; the lagged diagonals are refreshed there too.
+  // The energy (of the quadratic potentials: an extra pass) is needed at batch boundaries only.
   const auto evaluate = [&](int iteration, bool at_boundary, bool* landscape_changed) {
-    return assembler.accumulate(x, iteration, at_boundary, at_boundary, landscape_changed);
+    return assembler.accumulate(x, iteration, at_boundary, landscape_changed);
   };
   const auto finish = [&](StopReason reason, double energy, double gradient_norm) {
     report.reason = reason;
@@ -91,6 +91,7 @@ SolveReport solve(Objective& objective, Eigen::MatrixX3d& positions, const Solve
   double checkpoint_energy = 0.0;
   bool landscape_changed_since_checkpoint = false;
   double alpha = settings.step_size;
+  bool batch_started_at_restart = true;
   Eigen::MatrixX3d snapshot;  // for on_iterate, reused
   ChebyshevWeights chebyshev(settings.spectral_radius);
 
@@ -112,13 +113,16 @@ SolveReport solve(Objective& objective, Eigen::MatrixX3d& positions, const Solve
       const double scale = std::abs(checkpoint_energy) + std::abs(report.initial_energy);
       const bool rose = !std::isfinite(energy) || energy > checkpoint_energy + 1e-12 * scale;
       if (rose && !landscape_changed_since_checkpoint) {
-        // Roll back to the checkpoint, restart Chebyshev, smaller steps.
+        // Roll back to the checkpoint and restart Chebyshev. A rise within the first batch after
+        // a (re)start is not overshoot of the acceleration but a step too long for the
+        // preconditioned gradient itself: then α shrinks too.
         x = checkpoint;
         previous = checkpoint;
         assembler.gather(x,
                          [](int, const Eigen::Vector3d&, const Eigen::Vector3d&) { return 0.0; });
         chebyshev.restart();
-        alpha *= settings.step_shrink;
+        if (batch_started_at_restart) alpha *= settings.step_shrink;
+        batch_started_at_restart = true;
         ++report.rollbacks;
         report.final_step_size = alpha;
         if (alpha < settings.min_step_size || at_budget) {
@@ -129,6 +133,7 @@ SolveReport solve(Objective& objective, Eigen::MatrixX3d& positions, const Solve
         }
         continue;
       }
+      batch_started_at_restart = false;
       const double decrease = checkpoint_energy - energy;
       const bool compared = !landscape_changed_since_checkpoint;
       checkpoint = x;

@@ -6,8 +6,10 @@
 //   ω₁ = 1, ω₂ = 2 / (2 − ρ²), ω_{k+1} = 4 / (4 − ρ² ω_k),
 //   x_{k+1} = ω_k (x_k + Δx − x_{k−1}) + x_{k−1}.
 // Safeguard: every `batch_iterations` the energy is compared with the last checkpoint; when it
-// rose, the state rolls back to the checkpoint, Chebyshev restarts and α shrinks. The same batch
-// boundary polls the observer for cancellation and reports progress.
+// rose, the state rolls back to the checkpoint and Chebyshev restarts; α shrinks when the rise
+// came within the first batch after a restart (the plain preconditioned step was too long, not
+// the acceleration). The same batch boundary polls the observer for cancellation and reports
+// progress.
 //
 // Only free vertices move (ActiveSet); a free vertex with a zero Hessian diagonal (no potential
 // with curvature touches it) does not move.

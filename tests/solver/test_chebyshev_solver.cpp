@@ -168,8 +168,8 @@ class ChebyshevSolverTest : public QObject {
       gap = std::max(
           gap, (x.row(garment.sewing_pairs(p, 0)) - x.row(garment.sewing_pairs(p, 1))).norm());
     const double flatness = min_neighbour_normal_dot(garment, x);
-    qInfo("%d iterations (%s), max seam gap %.3f mm, min neighbour normal dot %.4f",
-          report.iterations, to_string(report.reason), 1e3 * gap, flatness);
+    qInfo("%d iterations (%s, %d rollbacks), max seam gap %.3f mm, min neighbour normal dot %.4f",
+          report.iterations, to_string(report.reason), report.rollbacks, 1e3 * gap, flatness);
     QVERIFY(gap < 1e-3);
     QVERIFY(flatness > 0.5);
   }
@@ -215,9 +215,9 @@ class ChebyshevSolverTest : public QObject {
       min_distance = std::min(min_distance, phi);
     }
     qInfo(
-        "%d vertices inside before, %d after %d iterations (%s); closest %.2f mm from the "
-        "surface",
-        inside_before, inside_after, report.iterations, to_string(report.reason),
+        "%d vertices inside before, %d after %d iterations (%s, %d rollbacks); closest %.2f mm "
+        "from the surface",
+        inside_before, inside_after, report.iterations, to_string(report.reason), report.rollbacks,
         1e3 * min_distance);
     QVERIFY(inside_before > 50);
     QCOMPARE(inside_after, 0);
