@@ -4,6 +4,7 @@
 #include "command_line.h"
 #include "commands.h"
 #include "engine/body/body_mesh.h"
+#include "engine/body/default_body.h"
 #include "engine/io/garment_obj.h"
 #include "engine/io/quality_json.h"
 #include "engine/pattern/garment_mesh.h"
@@ -17,8 +18,7 @@ int check_command(const std::vector<std::string>& args) {
   const std::string garment_path = line.only_positional("garment OBJ");
   const auto pattern_path = line.value("--pattern");
   if (!pattern_path) throw UsageError("--pattern PATTERN.json is required (it names the pieces)");
-  const auto body_path = line.value("--body");
-  if (!body_path) throw UsageError("--body BODY.obj is required");
+  const std::filesystem::path body_path = line.value("--body").value_or(default_body_path());
   MeshingOptions options;
   options.target_edge_length = line.number("--edge-length", options.target_edge_length);
   if (!(options.target_edge_length > 0.0))
@@ -26,7 +26,7 @@ int check_command(const std::vector<std::string>& args) {
 
   const Garment garment = build_garment(load_pattern(*pattern_path), options);
   const Eigen::MatrixX3d positions = read_garment_obj(garment_path, garment);
-  const BodyMesh body = load_body_obj(*body_path);
+  const BodyMesh body = load_body_obj(body_path);
   const BodyReference reference(body);
   const GarmentMetrics metrics =
       measure_garment(garment, positions, &reference, expected_regions_from_names(garment));

@@ -33,9 +33,10 @@ const Command kCommands[] = {
      "and locations. --json prints {vertices, triangles, height_m, landmarks, axes,\n"
      "locations:[{name, center, axis, surface, ...}], sdf:{spacing_m, build_seconds, cached}}.",
      garment::cli::body_command},
-    {"check", "check GARMENT.obj --pattern PATTERN.json --body BODY.obj [--json] [--edge-length M]",
+    {"check", "check GARMENT.obj --pattern PATTERN.json [--body BODY.obj] [--json] [--edge-length M]",
      "Measures a garment OBJ (as exported: one group per panel, vt = pattern coordinates) made from\n"
-     "PATTERN.json (meshed at --edge-length, default 0.02 m) on BODY.obj and prints every metric:\n"
+     "PATTERN.json (meshed at --edge-length, default 0.02 m) on BODY.obj (default: the bundled\n"
+     "body, resources/bodies/mean_all.obj) and prints every metric:\n"
      "body_inside_vertices (and max depth), body_crossing_edges, self_crossing_edges (cloth edges\n"
      "through cloth triangles, seams welded, with the pairs of pieces), folds (neighbour triangles\n"
      "with normal dot < -0.5; theta_in/theta_out), max_strain, p99_strain, max_seam_gap_m,\n"

@@ -256,6 +256,11 @@ class FlatReferenceTest : public QObject {
     QVERIFY(run.out.contains("max_seam_gap_m"));
     QVERIFY(run.out.contains("ok                     false"));
 
+    // Without --body: the bundled body.
+    run = garment_init({"check", flat, "--pattern", pattern});
+    QCOMPARE(run.exit_code, 3);
+    QVERIFY(run.out.contains("mean_all.obj"));
+
     // The OBJ of one pattern checked against another: bad input, the group named.
     run = garment_init({"check", flat, "--pattern",
                         path_text(test::test_data("patterns/gc_0000_specification.json")), "--body",
@@ -264,6 +269,8 @@ class FlatReferenceTest : public QObject {
     QVERIFY2(run.err.contains("is not a panel of"), run.err.constData());
     run = garment_init({"check", flat, "--body", body});
     QCOMPARE(run.exit_code, 2);
+    run = garment_init({"check", flat, "--pattern", pattern, "--body", "/nonexistent/body.obj"});
+    QCOMPARE(run.exit_code, 1);
   }
 
   void command_line_check_passes_a_clean_garment() {
