@@ -125,11 +125,14 @@ SolveReport solve(Objective& objective, Eigen::MatrixX3d& positions, const Solve
         batch_started_at_restart = true;
         ++report.rollbacks;
         report.final_step_size = alpha;
-        if (alpha < settings.min_step_size || at_budget) {
+        const bool cancelled = observer && observer->cancel_requested();
+        if (at_budget || alpha < settings.min_step_size || cancelled) {
           report.iterations = iteration;
           const double final_energy = evaluate(iteration + 1, true, nullptr);
-          return finish(at_budget ? StopReason::IterationBudget : StopReason::Stalled, final_energy,
-                        gradient_norm_only());
+          return finish(at_budget   ? StopReason::IterationBudget
+                        : cancelled ? StopReason::Cancelled
+                                    : StopReason::Stalled,
+                        final_energy, gradient_norm_only());
         }
         continue;
       }
