@@ -19,5 +19,8 @@ int inspect_command(const std::vector<std::string>& args);
 int body_command(const std::vector<std::string>& args);
 int check_command(const std::vector<std::string>& args);
 int flat_command(const std::vector<std::string>& args);
+int seed_command(const std::vector<std::string>& args);
+int train_classifier_command(const std::vector<std::string>& args);
+int classify_eval_command(const std::vector<std::string>& args);
 
 }  // namespace garment::cli

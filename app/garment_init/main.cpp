@@ -50,6 +50,37 @@ const Command kCommands[] = {
      "from, the reference to compare with. OBJ as exported (one group per panel, vt = pattern\n"
      "coordinates, metres).",
      garment::cli::flat_command},
+    {"seed", "seed PATTERN.json [--json] [--weights FILE]",
+     "Classifies the pattern's pieces for seeding (paper §5.1): strips sewn side to side are "
+     "merged\n"
+     "into one seed piece (waist merge), then graph attention networks over the sewing graph\n"
+     "(an ensemble of 3, probabilities averaged) give each piece a class (neck, waist,\n"
+     "front_chest, back_chest, front_pelvis, back_pelvis, other) and its probabilities. Panel\n"
+     "names are not used. --json prints\n"
+     "{pieces:[{name, class, probabilities:{class: p}}], waist_merge:[[names]]}. --weights\n"
+     "defaults to resources/classifier/gat_weights.json.",
+     garment::cli::seed_command},
+    {"train-classifier",
+     "train-classifier DATA_DIR -o WEIGHTS.json [--regions FILE] [--epochs N] [--ensemble N] "
+     "[--seed N]",
+     "Trains the seeding classifier on the GarmentCode patterns in DATA_DIR (labels from panel\n"
+     "names by --regions, default DATA_DIR/../panel_regions.json; used for training only). Split:\n"
+     "the file at position i of the name-sorted list is held out when i % 5 == 0, the other 80 %\n"
+     "train. --ensemble networks (default 3) from seeds --seed, --seed+1, ...; their probabilities\n"
+     "are averaged. Deterministic: same data and options, same weights. Prints the training time\n"
+     "and the held-out report (as classify-eval).",
+     garment::cli::train_classifier_command},
+    {"classify-eval",
+     "classify-eval DATA_DIR [--split held-out|training|all] [--weights FILE] [--regions FILE] "
+     "[--json]",
+     "Evaluates the seeding classifier on labelled patterns (default split: held-out; use --split\n"
+     "all for pattern_generator_templates). Prints per-class precision/recall, the confusion\n"
+     "matrix over seed pieces and the detection rates: neck-or-waist found = the pattern has a\n"
+     "neck or waist piece and the piece ranked highest by p(neck)+p(waist) is one and is\n"
+     "classified neck or waist; chest found = likewise with front/back chest; both chests = the\n"
+     "top front-chest and top back-chest pieces are both right; false alarms on patterns without\n"
+     "neck or waist.",
+     garment::cli::classify_eval_command},
 };
 
 void print_help(std::ostream& out) {

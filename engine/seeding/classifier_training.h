@@ -1,0 +1,70 @@
+#pragma once
+// Training the seeding classifier (gat_model.h) on labelled patterns: reproducible (fixed split,
+// fixed seed, fixed order of every floating-point sum: same data, same weights) and fast (a few
+// seconds of optimisation on one core after the patterns are meshed).
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "engine/core/observer.h"
+#include "engine/seeding/gat_model.h"
+#include "engine/seeding/panel_labels.h"
+#include "engine/seeding/seed_class.h"
+#include "engine/seeding/seed_graph.h"
+
+namespace garment {
+
+struct LabelledPattern {
+  std::filesystem::path file;
+  std::vector<std::string> piece_names;  // for reports
+  SeedGraph graph;
+  // #groups: the members' common class; a group whose members disagree takes its largest
+  // member's class.
+  std::vector<SeedClass> group_labels;
+};
+
+// Imports, meshes (default options), builds the seed graph of and labels every file, in parallel;
+// the result is in file order. Throws InputError for a file that cannot be read or labelled.
+// With `whole_chest_variants`, a pattern whose front (or back) chest is two halves sewn together
+// is followed by a variant in which each such pair is one seed piece: GarmentCode cuts every
+// bodice in halves, other patterns often in one piece, and the classifier should know both.
+std::vector<LabelledPattern> load_labelled_patterns(const std::vector<std::filesystem::path>& files,
+                                                    const PanelLabeller& labeller,
+                                                    bool whole_chest_variants = false,
+                                                    Observer* observer = nullptr);
+
+// The fixed 80/20 split of a dataset: the file at position i of the name-sorted list
+// (pattern_files) is held out for evaluation when i % 5 == 0, used for training otherwise. For
+// garmentcode_random that is gc_0000, gc_0005, ..., gc_0495 held out.
+inline bool is_held_out(std::size_t position) {
+  return position % 5 == 0;
+}
+
+struct TrainingOptions {
+  GatShape shape;
+  int epochs = 200;
+  int batch_patterns = 8;
+  double learning_rate = 3e-3;  // AdamW, cosine-decayed to a tenth over the epochs
+  double weight_decay = 1e-4;
+  // Networks trained alike from different initial weights (seeds seed, seed + 1, ...), their
+  // probabilities averaged: one network's answers on shapes unlike its training data vary with
+  // its initial weights; the average varies much less.
+  int ensemble = 3;
+  std::uint64_t seed = 20240717;  // initial weights and the order of patterns in each epoch
+};
+
+struct TrainingRun {
+  std::vector<GatModel> members;
+  // Per member, the mean weighted cross-entropy per node of each epoch.
+  std::vector<std::vector<double>> epoch_losses;
+};
+
+// Fits the feature normalisation on `training`, then, for each member (in parallel; each one is
+// deterministic), minimises the class-weighted cross-entropy (weights ∝ 1/√frequency, so that the
+// rare neck and waist pieces count) with AdamW.
+TrainingRun train_classifier(const std::vector<LabelledPattern>& training,
+                             const TrainingOptions& options, Observer* observer = nullptr);
+
+}  // namespace garment

@@ -1,0 +1,191 @@
+// The trained seeding classifier: its weight file is validated on load; training is reproducible;
+// and on patterns it was not trained on it finds the seeds as often as the paper reports (shared
+// held-out split), with a looser bar on the small held-out subset kept in tests/data/seeding.
+
+#include <QtTest>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/core/atomic_file.h"
+#include "engine/core/error.h"
+#include "engine/pattern/pattern_files.h"
+#include "engine/seeding/classification_report.h"
+#include "engine/seeding/classifier_training.h"
+#include "engine/seeding/classifier_weights.h"
+#include "engine/seeding/piece_classifier.h"
+#include "support/test_paths.h"
+
+using namespace garment;
+
+namespace {
+
+QString message_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const InputError& error) {
+    return QString::fromStdString(error.what());
+  }
+  return {};
+}
+
+std::vector<std::filesystem::path> held_out_files(const std::filesystem::path& folder) {
+  const auto files = pattern_files(folder);
+  std::vector<std::filesystem::path> held_out;
+  for (std::size_t i = 0; i < files.size(); ++i)
+    if (is_held_out(i)) held_out.push_back(files[i]);
+  return held_out;
+}
+
+}  // namespace
+
+class ClassifierTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void bundledWeightsLoad() {
+    const PieceClassifier classifier = PieceClassifier::load(default_classifier_weights_path());
+    QVERIFY(!classifier.members().empty());
+    for (const GatModel& member : classifier.members()) {
+      QCOMPARE(member.shape().node_features, kNodeFeatureCount);
+      QVERIFY(member.parameters.allFinite());
+    }
+  }
+
+  void badWeightFilesAreRefused_data() {
+    QTest::addColumn<QString>("edit");
+    QTest::addColumn<QString>("expected");
+    QTest::newRow("truncated") << "truncate"
+                               << "not a valid JSON weight file";
+    QTest::newRow("format") << "format"
+                            << "format: expected";
+    QTest::newRow("version") << "version"
+                             << "expected version 1";
+    QTest::newRow("short parameters") << "short"
+                                      << "numbers, found";
+    QTest::newRow("text parameter") << "text"
+                                    << "parameters[0][3]: not a number";
+    QTest::newRow("member count") << "members"
+                                  << "one array per member";
+    QTest::newRow("zero scale") << "scale"
+                                << "node_scale[0]: expected a positive";
+    QTest::newRow("feature layout") << "features"
+                                    << "another feature layout";
+    QTest::newRow("missing shape") << "shape"
+                                   << "missing key 'shape'";
+  }
+  void badWeightFilesAreRefused() {
+    QFETCH(QString, edit);
+    QFETCH(QString, expected);
+    const std::string good = read_file(default_classifier_weights_path());
+    nlohmann::json root = nlohmann::json::parse(good);
+    std::string text;
+    if (edit == "truncate") {
+      text = good.substr(0, good.size() / 2);
+    } else {
+      if (edit == "format") root["format"] = "something else";
+      if (edit == "version") root["version"] = 2;
+      if (edit == "short") root["parameters"][0].erase(root["parameters"][0].size() - 1);
+      if (edit == "text") root["parameters"][0][3] = "x";
+      if (edit == "members") root["members"] = root["members"].get<int>() + 1;
+      if (edit == "scale") root["normalisation"]["node_scale"][0] = 0.0;
+      if (edit == "features") root["node_features"][0] = "radial_1";
+      if (edit == "shape") root.erase("shape");
+      text = root.dump();
+    }
+    const QString message = message_of([&] { parse_classifier_weights(text, "bad_weights.json"); });
+    QVERIFY2(message.startsWith("bad_weights.json"), qPrintable(message));
+    QVERIFY2(message.contains(expected), qPrintable(message));
+  }
+
+  void missingWeightFileIsAClearError() {
+    const QString message =
+        message_of([] { PieceClassifier::load("/nonexistent/gat_weights.json"); });
+    QVERIFY2(message.contains("/nonexistent/gat_weights.json"), qPrintable(message));
+    QVERIFY2(message.contains("not found"), qPrintable(message));
+  }
+
+  void trainingIsReproducible() {
+    const PanelLabeller labeller =
+        PanelLabeller::load(test::test_data("seeding/panel_regions.json"));
+    const auto patterns = load_labelled_patterns(
+        pattern_files(test::test_data("seeding/garmentcode_random")), labeller, true);
+    QVERIFY(patterns.size() > 20);  // 20 files and their whole-chest variants
+    TrainingOptions options;
+    options.epochs = 3;
+    options.ensemble = 2;
+    const auto weights = [&](std::uint64_t seed) {
+      options.seed = seed;
+      return classifier_weights_json(train_classifier(patterns, options).members, {});
+    };
+    const std::string first = weights(1);
+    QCOMPARE(weights(1), first);
+    QVERIFY(weights(2) != first);
+    // What is written is what is read.
+    const std::vector<GatModel> members = parse_classifier_weights(first, "trained.json");
+    QCOMPARE(members.size(), std::size_t{2});
+    QVERIFY(members[0].parameters != members[1].parameters);
+    QCOMPARE(classifier_weights_json(members, {}), first);
+  }
+
+  void heldOutSubsetFindsSeeds() {
+    // 20 held-out GarmentCode patterns copied into tests/data (see LICENSES.md there).
+    const PanelLabeller labeller =
+        PanelLabeller::load(test::test_data("seeding/panel_regions.json"));
+    const PieceClassifier classifier = PieceClassifier::load(default_classifier_weights_path());
+    const ClassificationReport report = evaluate_classifier(
+        classifier, load_labelled_patterns(
+                        pattern_files(test::test_data("seeding/garmentcode_random")), labeller));
+    qInfo("%s", format_classification_report(report).c_str());
+    QCOMPARE(report.patterns, 20);
+    QVERIFY(report.neck_or_waist.patterns >= 10);
+    QVERIFY(report.chest.patterns >= 12);
+    QVERIFY(report.neck_or_waist.rate() >= 0.85);
+    QVERIFY(report.chest.rate() >= 0.85);
+    QVERIFY(report.accuracy() >= 0.75);
+    QVERIFY(report.recall(SeedClass::Waist) >= 0.8);
+
+    const ClassificationReport templates = evaluate_classifier(
+        classifier,
+        load_labelled_patterns(
+            pattern_files(test::test_data("seeding/pattern_generator_templates")), labeller));
+    QCOMPARE(templates.neck_or_waist.patterns, 2);
+    QCOMPARE(templates.neck_or_waist.found, 2);
+  }
+
+  void sharedHeldOutSplitMatchesThePaper() {
+    if (!test::shared_data_available()) QSKIP("shared dataset not present");
+    const PanelLabeller labeller =
+        PanelLabeller::load(test::shared_data("patterns/panel_regions.json"));
+    const PieceClassifier classifier = PieceClassifier::load(default_classifier_weights_path());
+    const ClassificationReport report = evaluate_classifier(
+        classifier,
+        load_labelled_patterns(held_out_files(test::shared_data("patterns/garmentcode_random")),
+                               labeller));
+    qInfo("%s", format_classification_report(report).c_str());
+    QCOMPARE(report.patterns, 100);
+    // Paper §8.3.1: neck or waist found in 96 %, chest in 89 %.
+    QVERIFY(report.neck_or_waist.rate() >= 0.96);
+    QVERIFY(report.chest.rate() >= 0.89);
+    QVERIFY(report.neck_or_waist_false_alarms <= report.patterns_without_neck_or_waist / 5);
+  }
+
+  void templatesGeneralisation() {
+    if (!test::shared_data_available()) QSKIP("shared dataset not present");
+    const PanelLabeller labeller =
+        PanelLabeller::load(test::shared_data("patterns/panel_regions.json"));
+    const PieceClassifier classifier = PieceClassifier::load(default_classifier_weights_path());
+    const ClassificationReport report = evaluate_classifier(
+        classifier,
+        load_labelled_patterns(
+            pattern_files(test::shared_data("patterns/pattern_generator_templates")), labeller));
+    qInfo("%s", format_classification_report(report).c_str());
+    QCOMPARE(report.patterns, 23);
+    QCOMPARE(report.neck_or_waist.found, report.neck_or_waist.patterns);
+    QVERIFY(report.neck_or_waist_false_alarms <= report.patterns_without_neck_or_waist / 5);
+    // Templates cut bodices whole where GarmentCode cuts them in halves: chest detection
+    // generalises only partly (see the issue notes); this guards against regressions.
+    QVERIFY(report.chest.rate() >= 0.5);
+  }
+};
+
+QTEST_APPLESS_MAIN(ClassifierTest)
+#include "test_classifier.moc"
