@@ -1,5 +1,6 @@
 #include "engine/energy/stretch_potential.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -78,8 +79,13 @@ void StretchPotential::bind_elements(const ActiveSet& active) {
     if (!active.includes({spring.i, spring.j})) continue;
     Spring bound = spring;
     bound.stiffness *= scale_;
+    if (bound.i > bound.j) std::swap(bound.i, bound.j);
     active_.push_back(bound);
   }
+  // In vertex order: a block of springs then writes one stretch of its thread's buffer and reads
+  // positions nearly in sequence (the mesh's own order jumps across the piece).
+  std::sort(active_.begin(), active_.end(),
+            [](const Spring& a, const Spring& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; });
 }
 
 double StretchPotential::accumulate(const Positions& x, int begin, int end,
