@@ -3,10 +3,10 @@
 // 20,000-vertex garment (GarmentCode design gc_0333 meshed at 12 mm, the size of a post-process),
 // each with stretch + bending (with seams) + sewing + body repulsion, then with one-sided self
 // repulsion added (odd pieces repelled by the triangles of even ones), on 1 and 2 threads.
-// Reported: the mean rate over the solve and the best rate over one batch of 8 iterations (the
-// machine may be shared: the best batch shows what the code does when it has the cores), the
-// bytes one iteration streams, and the rate copy bandwidth alone would allow (DRAM and a
-// cache-resident copy of the same size).
+// Reported: the mean rate over the solve, the best rate over one batch of 8 iterations, and the
+// process CPU time per iteration (the machine may be shared: the best batch and the CPU time show
+// what the code does when it has the cores), the bytes one iteration streams, and the rate copy
+// bandwidth alone would allow (DRAM and a cache-resident copy of the same size).
 // The body is an analytic capsule sampled on a 6 mm grid with a body field's margin (0.3 m), so
 // the grid is as large as a body's. Pieces are wrapped around it in layers 2 cm apart.
 // Usage: bench_solver [DATA_DIR] (default: the shared dataset)
@@ -22,6 +22,8 @@
 #include <cstring>
 #include <memory>
 #include <vector>
+
+#include <sys/resource.h>
 
 #include "bench_solver_scenes.h"
 #include "engine/energy/bending_potential.h"
@@ -62,8 +64,16 @@ double copy_bandwidth(std::size_t bytes, int threads) {
   return 2.0 * static_cast<double>(count * sizeof(double)) * repeats / seconds;
 }
 
+double process_cpu_seconds() {
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
 struct Timing {
   double iterations_per_second = 0.0;
+  double cpu_microseconds_per_iteration = 0.0;
   double best_batch_per_second = 0.0;
   std::size_t bytes_per_iteration = 0;
   int contacts = 0;
@@ -106,9 +116,12 @@ Timing run(const Scene& scene, const std::shared_ptr<const DistanceGrid>& body, 
   settings.max_iterations = iterations;
   x = scene.start;
   BatchClock clock;
+  const double cpu_start = process_cpu_seconds();
   const SolveReport report = solve(objective, x, settings, &clock);
+  const double cpu_seconds = process_cpu_seconds() - cpu_start;
   Timing timing;
   timing.iterations_per_second = report.iterations / report.seconds;
+  timing.cpu_microseconds_per_iteration = 1e6 * cpu_seconds / report.iterations;
   double best = 1e30;
   for (std::size_t i = 1; i < clock.stamps.size(); ++i)
     best = std::min(best,
@@ -161,12 +174,12 @@ int main(int argc, char** argv) {
         rate[threads] = timing.best_batch_per_second;
         const double cached = copy_bandwidth(timing.bytes_per_iteration, threads);
         std::printf(
-            "  %-15s %d thread%s: %7.0f it/s mean, %7.0f it/s best batch   %6.0f KB/it   "
-            "bandwidth bound %7.0f it/s (DRAM), %7.0f it/s (cache-resident)",
+            "  %-15s %d thread%s: %7.0f it/s mean, %7.0f it/s best batch, %7.1f us CPU/it   "
+            "%6.0f KB/it, bandwidth bound %7.0f it/s (DRAM), %7.0f it/s (cache-resident)",
             self ? "+self repulsion" : "no self", threads, threads > 1 ? "s" : " ",
             timing.iterations_per_second, timing.best_batch_per_second,
-            timing.bytes_per_iteration / 1e3, dram[threads] / timing.bytes_per_iteration,
-            cached / timing.bytes_per_iteration);
+            timing.cpu_microseconds_per_iteration, timing.bytes_per_iteration / 1e3,
+            dram[threads] / timing.bytes_per_iteration, cached / timing.bytes_per_iteration);
         if (self)
           std::printf("   %d contacts, refresh %.2f ms", timing.contacts,
                       1e3 * timing.refresh_seconds);

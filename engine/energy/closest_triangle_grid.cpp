@@ -12,7 +12,7 @@ namespace {
 constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
 constexpr int kCoordinateBits = 21;
 constexpr int kCoordinateOffset = 1 << (kCoordinateBits - 1);
-constexpr long long kMaxCellsPerTriangle = 512;
+constexpr long long kMaxCellsPerTriangle = 4096;
 
 std::uint64_t mix(std::uint64_t key) {
   return key * 0x9E3779B97F4A7C15ull;
@@ -58,9 +58,10 @@ void ClosestTriangleGrid::build(const Positions& x, const Eigen::MatrixX3i& tria
     const Eigen::Vector3d c = x.row(triangles(t, 2)).transpose();
     lower_[i] = a.cwiseMin(b).cwiseMin(c);
     upper_[i] = a.cwiseMax(b).cwiseMax(c);
+    // A triangle with a coordinate that is not finite cannot be the closest one: left out.
+    if (!(lower_[i].allFinite() && upper_[i].allFinite())) continue;
     const Eigen::Vector3d extent = (upper_[i] - lower_[i]) / cell_size_ + Eigen::Vector3d::Ones();
-    if (!(lower_[i].allFinite() && upper_[i].allFinite() &&
-          extent.prod() <= static_cast<double>(kMaxCellsPerTriangle) &&
+    if (!(extent.prod() <= static_cast<double>(kMaxCellsPerTriangle) &&
           (lower_[i].cwiseAbs().array() / cell_size_ < kCoordinateOffset / 2).all() &&
           (upper_[i].cwiseAbs().array() / cell_size_ < kCoordinateOffset / 2).all())) {
       oversized_.push_back(static_cast<int>(i));

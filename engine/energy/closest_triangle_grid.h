@@ -47,8 +47,8 @@ class ClosestTriangleGrid {
   std::vector<std::uint64_t> slot_keys_;  // open addressing, power-of-two size
   std::vector<int> slot_start_;           // items_[slot_start_[s] .. slot_start_[s + 1])
   std::vector<int> items_;                // indices into ids_
-  // Triangles too large for the grid (bounding box over kMaxCellsPerTriangle cells, or not
-  // finite): checked by every query.
+  // Triangles too large for the grid (a bounding box over kMaxCellsPerTriangle cells: a mesh
+  // torn apart): checked by every query.
   std::vector<int> oversized_;
 };
 
