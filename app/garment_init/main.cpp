@@ -33,22 +33,24 @@ const Command kCommands[] = {
      "and locations. --json prints {vertices, triangles, height_m, landmarks, axes,\n"
      "locations:[{name, center, axis, surface, ...}], sdf:{spacing_m, build_seconds, cached}}.",
      garment::cli::body_command},
-    {"check", "check GARMENT.obj --pattern PATTERN.json [--body BODY.obj] [--json] [--edge-length M]",
-     "Measures a garment OBJ (as exported: one group per panel, vt = pattern coordinates) made from\n"
-     "PATTERN.json (meshed at --edge-length, default 0.02 m) on BODY.obj (default: the bundled\n"
-     "body, resources/bodies/mean_all.obj) and prints every metric:\n"
-     "body_inside_vertices (and max depth), body_crossing_edges, self_crossing_edges (cloth edges\n"
-     "through cloth triangles, seams welded, with the pairs of pieces), folds (neighbour triangles\n"
-     "with normal dot < -0.5; theta_in/theta_out), max_strain, p99_strain, max_seam_gap_m,\n"
-     "misplaced (pieces on the wrong side of the body; expected sides from the panel names), fails\n"
-     "and ok. ok = nothing inside or crossing the body, no cloth crossing, no fold, strain <= 20 %,\n"
-     "seam gap <= 5 mm, nothing misplaced. Exit 0 when ok, 3 when not. --json prints one object.",
+    {"check",
+     "check GARMENT.obj --pattern PATTERN.json [--body BODY.obj] [--json] [--edge-length M]",
+     "Measures a garment OBJ (as exported: one group per panel, vt = pattern coordinates)\n"
+     "made from PATTERN.json (meshed at --edge-length, default 0.02 m) on BODY.obj (default:\n"
+     "the bundled body, resources/bodies/mean_all.obj) and prints every metric:\n"
+     "body_inside_vertices (and max depth), body_crossing_edges, self_crossing_edges (cloth\n"
+     "edges through cloth triangles, seams welded, with the pairs of pieces), folds\n"
+     "(neighbour triangles with normal dot < -0.5; theta_in/theta_out), max_strain,\n"
+     "p99_strain, max_seam_gap_m, misplaced (pieces on the wrong side of the body; expected\n"
+     "sides from the panel names), fails and ok. ok = nothing inside or crossing the body, no\n"
+     "cloth crossing, no fold, strain <= 20 %, seam gap <= 5 mm, nothing misplaced. Exit 0\n"
+     "when ok, 3 when not. --json prints one object.",
      garment::cli::check_command},
     {"flat", "flat PATTERN.json -o OUT.obj [--edge-length M]",
-     "Writes the pieces flat where the pattern file places them (world = R(x, y, 0) + translation,\n"
-     "R = Rz.Ry.Rx of the panel rotation), unsimulated: the state GarmentCode's simulator starts\n"
-     "from, the reference to compare with. OBJ as exported (one group per panel, vt = pattern\n"
-     "coordinates, metres).",
+     "Writes the pieces flat where the pattern file places them (world = R(x, y, 0) +\n"
+     "translation, R = Rz.Ry.Rx of the panel rotation), unsimulated: the state GarmentCode's\n"
+     "simulator starts from, the reference to compare with. OBJ as exported (one group per\n"
+     "panel, vt = pattern coordinates, metres).",
      garment::cli::flat_command},
     {"seed", "seed PATTERN.json [--json] [--weights FILE]",
      "Classifies the pattern's pieces for seeding (paper §5.1): strips sewn side to side are "
