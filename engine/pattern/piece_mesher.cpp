@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <list>
 #include <vector>
 
 namespace garment {
@@ -99,6 +100,10 @@ PieceMesh triangulate_piece(const Eigen::MatrixX2d& outline, double edge_length)
     triangulation.insert(Triangulation::Point(point.x(), point.y()));
 
   Mesher mesher(triangulation, Criteria(kShapeBound, kSizeBoundFactor * edge_length));
+  // No seeds: the domain is everything enclosed. Setting them explicitly also initialises the
+  // mesher's seed mark, which CGAL 5.5 leaves uninitialised otherwise (UBSan: invalid bool load).
+  const std::list<Triangulation::Point> no_seeds;
+  mesher.set_seeds(no_seeds.begin(), no_seeds.end(), false);
   mesher.refine_mesh();
 
   int next_index = outline_count;
