@@ -23,13 +23,51 @@ const Command kCommands[] = {
      "one\n"
      "object {pieces, stitches, darts, vertices, triangles}.",
      garment::cli::inspect_command},
+    {"run",
+     "run PATTERN.json [--body BODY.obj] -o OUT.obj [--report R.json] [--seed-pieces a,b "
+     "--seed-location NAME] "
+     "[--order p1,p2,...] [--threads N] [--edge-length M] [--parameters P.json] [--snapshots DIR] "
+     "[--quiet]",
+     "Arranges the pattern on the body (default: the bundled mean body) and writes the garment "
+     "OBJ\n"
+     "(one group per panel, vt = pattern coordinates). Seeds with the classifier unless "
+     "--seed-pieces\n"
+     "and --seed-location (one of the 15 body locations, see `body`) are given; --order fixes the\n"
+     "arrangement order of the named pieces. --report writes the order, batches, revisits, "
+     "per-phase\n"
+     "iterations and times and the quality metrics as JSON. --snapshots writes the garment after "
+     "every\n"
+     "phase (NNN_batchB_PHASE.obj), to step through the arrangement. --parameters overrides "
+     "stiffnesses,\n"
+     "budgets and thresholds (keys as in the report's \"parameters\"). Exit 0 when the garment "
+     "passes the\n"
+     "quality check, 3 when it was written but fails it.",
+     garment::cli::run_command},
+    {"batch",
+     "batch DIR -o OUTDIR [--jobs N] [--body BODY.obj] [--bodies DIR] [--time-limit S] [--limit N] "
+     "[--parameters P.json]",
+     "Runs `run` on every pattern in DIR, each in its own process with one thread and a time "
+     "limit\n"
+     "(default 300 s), --jobs at a time (default: the number of cores). Each pattern goes on its "
+     "own\n"
+     "body when DIR has a GarmentCode index.json (body_obj, looked up in --bodies, default\n"
+     "DIR/../../bodies), else on --body (default: the bundled body). Writes per pattern "
+     "OUTDIR/NAME.obj,\n"
+     ".report.json, .log and .outcome.json; patterns with an outcome are skipped, so an "
+     "interrupted\n"
+     "batch resumes. Prints a progress bar on a terminal and writes summary.md and summary.json: "
+     "success\n"
+     "rate, failures by class, time per garment (median, p95, max).",
+     garment::cli::batch_command},
     {"body", "body [BODY.obj] [--json] [--spacing M] [--no-cache]",
      "Loads a body (default: the bundled resources/bodies/mean_all.obj): OBJ with triangles or\n"
      "polygons, metres or centimetres (detected); closed, manifold surface required. Prints its\n"
-     "size, landmark heights (crotch, hips, waist, bust, armpits, neck), torso/arm/leg axes, the 15\n"
+     "size, landmark heights (crotch, hips, waist, bust, armpits, neck), torso/arm/leg axes, the "
+     "15\n"
      "seed locations (name, surface cylinder|plane, centre, axis or normal, size) and the signed\n"
      "distance field (spacing, default 0.006 m; build time; whether it came from the cache in\n"
-     "$XDG_CACHE_HOME/garment-studio). BODY.locations.json beside the OBJ overrides landmarks, axes\n"
+     "$XDG_CACHE_HOME/garment-studio). BODY.locations.json beside the OBJ overrides landmarks, "
+     "axes\n"
      "and locations. --json prints {vertices, triangles, height_m, landmarks, axes,\n"
      "locations:[{name, center, axis, surface, ...}], sdf:{spacing_m, build_seconds, cached}}.",
      garment::cli::body_command},
@@ -68,7 +106,8 @@ const Command kCommands[] = {
      "Trains the seeding classifier on the GarmentCode patterns in DATA_DIR (labels from panel\n"
      "names by --regions, default DATA_DIR/../panel_regions.json; used for training only). Split:\n"
      "the file at position i of the name-sorted list is held out when i % 5 == 0, the other 80 %\n"
-     "train. --ensemble networks (default 3) from seeds --seed, --seed+1, ...; their probabilities\n"
+     "train. --ensemble networks (default 3) from seeds --seed, --seed+1, ...; their "
+     "probabilities\n"
      "are averaged. Deterministic: same data and options, same weights. Prints the training time\n"
      "and the held-out report (as classify-eval).",
      garment::cli::train_classifier_command},

@@ -1,0 +1,334 @@
+// garment-init batch: every pattern of a folder through `run`, each in its own process (a crash or
+// a runaway pattern cannot take the batch down; each gets a time limit), resumable, with a summary.
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "command_line.h"
+#include "commands.h"
+#include "engine/body/default_body.h"
+#include "engine/core/atomic_file.h"
+#include "engine/core/error.h"
+#include "engine/pattern/pattern_files.h"
+
+namespace garment::cli {
+namespace {
+
+struct Job {
+  std::filesystem::path pattern;
+  std::filesystem::path body;
+  std::string name;  // file stem
+};
+
+struct Outcome {
+  std::string name;
+  std::string body;
+  std::string status;  // ok, fails, error, timeout, crash
+  double seconds = 0.0;
+  int vertices = 0, pieces = 0, batches = 0, revisits = 0;
+  std::vector<std::string> failures;  // failure kinds
+  std::string message;
+};
+
+// index.json of GarmentCode datasets: file name → the body it was made for.
+std::map<std::string, std::string> bodies_from_index(const std::filesystem::path& folder) {
+  std::map<std::string, std::string> bodies;
+  const std::filesystem::path index = folder / "index.json";
+  if (!std::filesystem::exists(index)) return bodies;
+  const nlohmann::json json = nlohmann::json::parse(read_file(index), nullptr, false);
+  if (!json.is_object() || !json.contains("files") || !json["files"].is_array())
+    throw InputError(index.string() + ": expected {\"files\": [{\"file\", \"body_obj\"}]}");
+  for (const auto& entry : json["files"])
+    if (entry.is_object() && entry.contains("file") && entry.contains("body_obj"))
+      bodies[entry["file"].get<std::string>()] = entry["body_obj"].get<std::string>();
+  return bodies;
+}
+
+std::filesystem::path self_executable() {
+  return std::filesystem::read_symlink("/proc/self/exe");
+}
+
+Outcome read_outcome(const Job& job, const std::filesystem::path& report, int exit_code,
+                     double seconds) {
+  Outcome outcome;
+  outcome.name = job.name;
+  outcome.body = job.body.stem().string();
+  outcome.seconds = seconds;
+  const nlohmann::json json = nlohmann::json::parse(read_file(report), nullptr, false);
+  if (json.is_discarded()) {
+    outcome.status = "error";
+    outcome.message = "unreadable report";
+    return outcome;
+  }
+  outcome.status = exit_code == 0 ? "ok" : "fails";
+  outcome.vertices = json.value("vertices", 0);
+  outcome.pieces = json.value("pieces", 0);
+  outcome.batches = static_cast<int>(json["batches"].size());
+  outcome.revisits = json.value("revisits", 0);
+  for (const auto& failure : json["quality"]["fails"])
+    outcome.failures.push_back(failure.value("kind", "?"));
+  return outcome;
+}
+
+// Runs one job in a child process; returns its outcome (also written next to the output).
+Outcome run_job(const Job& job, const std::filesystem::path& output, double time_limit,
+                const std::string& parameters) {
+  const std::filesystem::path obj = output / (job.name + ".obj");
+  const std::filesystem::path report = output / (job.name + ".report.json");
+  const std::filesystem::path log = output / (job.name + ".log");
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t child = ::fork();
+  if (child == 0) {
+    const int descriptor = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (descriptor >= 0) {
+      ::dup2(descriptor, STDOUT_FILENO);
+      ::dup2(descriptor, STDERR_FILENO);
+    }
+    const std::string exe = self_executable().string();
+    std::vector<std::string> words = {
+        exe,  "run",        job.pattern.string(), "--body",        job.body.string(),
+        "-o", obj.string(), "--report",           report.string(), "--threads",
+        "1",  "--quiet"};
+    if (!parameters.empty()) words.insert(words.end(), {"--parameters", parameters});
+    std::vector<char*> argv;
+    for (std::string& word : words)
+      argv.push_back(word.data());
+    argv.push_back(nullptr);
+    ::execv(exe.c_str(), argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  bool timed_out = false;
+  for (;;) {
+    const pid_t done = ::waitpid(child, &status, WNOHANG);
+    if (done == child) break;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (elapsed > time_limit && !timed_out) {
+      ::kill(child, SIGKILL);
+      timed_out = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  Outcome outcome;
+  outcome.name = job.name;
+  outcome.body = job.body.stem().string();
+  outcome.seconds = seconds;
+  if (timed_out) {
+    outcome.status = "timeout";
+    outcome.message = "over " + std::to_string(static_cast<int>(time_limit)) + " s";
+  } else if (WIFSIGNALED(status)) {
+    outcome.status = "crash";
+    outcome.message = std::string("signal ") + std::to_string(WTERMSIG(status));
+  } else if (const int code = WEXITSTATUS(status);
+             (code == 0 || code == 3) && std::filesystem::exists(report)) {
+    outcome = read_outcome(job, report, code, seconds);
+  } else {
+    outcome.status = "error";
+    std::ifstream in(log);
+    std::getline(in, outcome.message);
+  }
+  nlohmann::json record{{"name", outcome.name},
+                        {"body", outcome.body},
+                        {"status", outcome.status},
+                        {"seconds", outcome.seconds},
+                        {"message", outcome.message}};
+  write_file_atomically(output / (job.name + ".outcome.json"), record.dump() + "\n");
+  return outcome;
+}
+
+// A finished job from an earlier run of the same batch, or nothing.
+std::optional<Outcome> previous_outcome(const Job& job, const std::filesystem::path& output) {
+  const std::filesystem::path record = output / (job.name + ".outcome.json");
+  if (!std::filesystem::exists(record)) return std::nullopt;
+  const nlohmann::json json = nlohmann::json::parse(read_file(record), nullptr, false);
+  if (json.is_discarded()) return std::nullopt;
+  const std::string status = json.value("status", "");
+  const double seconds = json.value("seconds", 0.0);
+  const std::filesystem::path report = output / (job.name + ".report.json");
+  if ((status == "ok" || status == "fails") && std::filesystem::exists(report))
+    return read_outcome(job, report, status == "ok" ? 0 : 3, seconds);
+  Outcome outcome;
+  outcome.name = job.name;
+  outcome.body = job.body.stem().string();
+  outcome.status = status;
+  outcome.seconds = seconds;
+  outcome.message = json.value("message", "");
+  return outcome;
+}
+
+double percentile(std::vector<double> values, double fraction) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t index =
+      std::min(values.size() - 1, static_cast<std::size_t>(fraction * (values.size() - 1) + 0.5));
+  return values[index];
+}
+
+void write_summary(const std::vector<Outcome>& outcomes, const std::filesystem::path& output,
+                   double wall_seconds) {
+  std::map<std::string, int> statuses, failure_kinds;
+  std::vector<double> times;
+  for (const Outcome& outcome : outcomes) {
+    ++statuses[outcome.status];
+    for (const std::string& kind : outcome.failures)
+      ++failure_kinds[kind];
+    if (outcome.status == "ok" || outcome.status == "fails") times.push_back(outcome.seconds);
+  }
+  const int total = static_cast<int>(outcomes.size());
+  const double success = total > 0 ? 100.0 * statuses["ok"] / total : 0.0;
+  nlohmann::json json;
+  json["patterns"] = total;
+  json["succeeded"] = statuses["ok"];
+  json["success_rate"] = success;
+  json["statuses"] = statuses;
+  json["failures_by_class"] = failure_kinds;
+  json["seconds"] = {{"median", percentile(times, 0.5)},
+                     {"p95", percentile(times, 0.95)},
+                     {"max", times.empty() ? 0.0 : *std::max_element(times.begin(), times.end())},
+                     {"wall", wall_seconds}};
+  json["results"] = nlohmann::json::array();
+  std::ostringstream markdown;
+  markdown << "# Batch summary\n\n"
+           << "| patterns | succeeded | success rate | median s | p95 s | max s |\n| --- | --- | "
+              "--- | --- | --- | --- |\n";
+  char line[256];
+  std::snprintf(line, sizeof line, "| %d | %d | %.1f %% | %.2f | %.2f | %.2f |\n\n", total,
+                statuses["ok"], success, percentile(times, 0.5), percentile(times, 0.95),
+                json["seconds"]["max"].get<double>());
+  markdown << line << "| status | count |\n| --- | --- |\n";
+  for (const auto& [status, count] : statuses)
+    markdown << "| " << status << " | " << count << " |\n";
+  markdown << "\n| failure class | garments |\n| --- | --- |\n";
+  for (const auto& [kind, count] : failure_kinds)
+    markdown << "| " << kind << " | " << count << " |\n";
+  markdown << "\n| pattern | body | status | seconds | vertices | pieces | batches | revisits | "
+              "failures |\n"
+           << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const Outcome& outcome : outcomes) {
+    std::string failures;
+    for (const std::string& kind : outcome.failures)
+      failures += (failures.empty() ? "" : ", ") + kind;
+    if (!outcome.message.empty()) failures += (failures.empty() ? "" : "; ") + outcome.message;
+    std::snprintf(line, sizeof line, "| %s | %s | %s | %.2f | %d | %d | %d | %d | %s |\n",
+                  outcome.name.c_str(), outcome.body.c_str(), outcome.status.c_str(),
+                  outcome.seconds, outcome.vertices, outcome.pieces, outcome.batches,
+                  outcome.revisits, failures.c_str());
+    markdown << line;
+    json["results"].push_back({{"name", outcome.name},
+                               {"body", outcome.body},
+                               {"status", outcome.status},
+                               {"seconds", outcome.seconds},
+                               {"vertices", outcome.vertices},
+                               {"failures", outcome.failures},
+                               {"message", outcome.message}});
+  }
+  write_file_atomically(output / "summary.md", markdown.str());
+  write_file_atomically(output / "summary.json", json.dump(2) + "\n");
+  std::printf(
+      "%d patterns: %d ok (%.1f %%), time per garment median %.2f s, p95 %.2f s, max %.2f s\n",
+      total, statuses["ok"], success, percentile(times, 0.5), percentile(times, 0.95),
+      json["seconds"]["max"].get<double>());
+  for (const auto& [kind, count] : failure_kinds)
+    std::printf("  %-20s %d\n", kind.c_str(), count);
+  for (const auto& [status, count] : statuses)
+    if (status != "ok" && status != "fails") std::printf("  %-20s %d\n", status.c_str(), count);
+  std::printf("summary: %s\n", (output / "summary.md").c_str());
+}
+
+}  // namespace
+
+int batch_command(const std::vector<std::string>& args) {
+  const CommandLine line(
+      args, {}, {"-o", "--jobs", "--body", "--bodies", "--time-limit", "--limit", "--parameters"});
+  const std::filesystem::path folder = line.only_positional("pattern folder");
+  const auto output_value = line.value("-o");
+  if (!output_value) throw UsageError("-o OUTDIR is required");
+  const std::filesystem::path output = *output_value;
+  const int jobs =
+      line.integer("--jobs", static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  const double time_limit = line.number("--time-limit", 300.0);
+  const int limit = line.integer("--limit", 0);
+  const std::string parameters =
+      line.value("--parameters") ? std::filesystem::absolute(*line.value("--parameters")).string()
+                                 : std::string();
+  if (jobs < 1) throw UsageError("--jobs must be at least 1");
+  if (!std::filesystem::is_directory(folder)) throw InputError(folder.string() + ": not a folder");
+
+  const std::map<std::string, std::string> index = bodies_from_index(folder);
+  const std::filesystem::path bodies =
+      line.value("--bodies").value_or((folder / ".." / ".." / "bodies").string());
+  const std::filesystem::path fallback_body = line.value("--body").value_or(default_body_path());
+  std::vector<Job> all;
+  for (const auto& pattern : pattern_files(folder)) {
+    Job job{pattern, fallback_body, pattern.stem().string()};
+    if (const auto it = index.find(pattern.filename().string());
+        it != index.end() && !line.has("--body")) {
+      job.body = bodies / (it->second + ".obj");
+      if (!std::filesystem::exists(job.body))
+        throw InputError(folder.string() + "/index.json: body '" + it->second + "' not found in " +
+                         bodies.string() + " (use --bodies DIR)");
+    }
+    all.push_back(job);
+    if (limit > 0 && static_cast<int>(all.size()) >= limit) break;
+  }
+  if (all.empty()) throw InputError(folder.string() + ": no pattern files");
+  std::filesystem::create_directories(output);
+
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<Outcome> outcomes(all.size());
+  std::vector<std::size_t> pending;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (auto previous = previous_outcome(all[i], output))
+      outcomes[i] = *previous;
+    else
+      pending.push_back(i);
+  }
+  const bool terminal = ::isatty(STDOUT_FILENO);
+  std::printf("%zu patterns, %zu already done, %d jobs\n", all.size(), all.size() - pending.size(),
+              jobs);
+  std::atomic<std::size_t> next{0}, finished{0};
+  std::mutex print;
+  const auto worker = [&] {
+    for (std::size_t k = next++; k < pending.size(); k = next++) {
+      const std::size_t i = pending[k];
+      outcomes[i] = run_job(all[i], output, time_limit, parameters);
+      const std::size_t count = ++finished;
+      std::lock_guard<std::mutex> lock(print);
+      if (terminal) {
+        const int width = 30, filled = static_cast<int>(width * count / pending.size());
+        std::printf("\r[%s%s] %zu/%zu %-24s %-7s", std::string(filled, '#').c_str(),
+                    std::string(width - filled, '.').c_str(), count, pending.size(),
+                    all[i].name.c_str(), outcomes[i].status.c_str());
+        std::fflush(stdout);
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 0; j < jobs; ++j)
+    threads.emplace_back(worker);
+  for (auto& thread : threads)
+    thread.join();
+  if (terminal) std::printf("\n");
+  write_summary(outcomes, output,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return kSuccess;
+}
+
+}  // namespace garment::cli

@@ -1,0 +1,134 @@
+#include <tbb/global_control.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "command_line.h"
+#include "commands.h"
+#include "engine/arrange/session.h"
+#include "engine/body/default_body.h"
+#include "engine/core/atomic_file.h"
+#include "engine/core/error.h"
+#include "engine/io/garment_obj.h"
+#include "engine/io/parameters_json.h"
+#include "engine/io/session_report.h"
+#include "engine/quality/garment_metrics.h"
+#include "engine/quality/verdict.h"
+
+namespace garment::cli {
+namespace {
+
+// One status line on a terminal, rewritten in place; silent when stderr is not a terminal.
+class TerminalProgress : public SessionObserver {
+ public:
+  explicit TerminalProgress(bool enabled) : enabled_(enabled) {}
+  void progress(std::string_view stage, double fraction) override {
+    if (!enabled_) return;
+    std::fprintf(stderr, "\r  %-28.*s batch %-3d %5.1f %%   ", static_cast<int>(stage.size()),
+                 stage.data(), batch_, fraction >= 0.0 ? 100.0 * fraction : 0.0);
+  }
+  void snapshot(const SessionSnapshot& snapshot) override { batch_ = snapshot.batch; }
+  void finish() const {
+    if (enabled_) std::fprintf(stderr, "\r%60s\r", "");
+  }
+
+ private:
+  bool enabled_;
+  int batch_ = -1;
+};
+
+std::vector<int> piece_indices(const Garment& garment, const std::vector<std::string>& names,
+                               const char* option) {
+  std::vector<int> pieces;
+  for (const std::string& name : names) {
+    const int piece = garment.pattern.panel_index(name);
+    if (piece < 0)
+      throw InputError(garment.pattern.source + ": " + option + ": no panel named '" + name + "'");
+    pieces.push_back(piece);
+  }
+  return pieces;
+}
+
+}  // namespace
+
+int run_command(const std::vector<std::string>& args) {
+  const CommandLine line(args, {"--quiet"},
+                         {"--body", "-o", "--glb", "--report", "--seed-pieces", "--seed-location",
+                          "--order", "--threads", "--edge-length", "--snapshots", "--parameters"});
+  const std::string pattern_path = line.only_positional("pattern file");
+  const auto output = line.value("-o");
+  if (!output) throw UsageError("-o OUT.obj is required");
+  const int threads = line.integer("--threads", 0);
+  if (threads < 0) throw UsageError("--threads must be 0 (all cores) or more");
+  std::unique_ptr<tbb::global_control> thread_limit;
+  if (threads > 0)
+    thread_limit = std::make_unique<tbb::global_control>(
+        tbb::global_control::max_allowed_parallelism, threads);
+  if (line.has("--seed-pieces") != line.has("--seed-location"))
+    throw UsageError("--seed-pieces and --seed-location go together");
+
+  const auto start = std::chrono::steady_clock::now();
+  SceneOptions scene_options;
+  scene_options.meshing.target_edge_length =
+      line.number("--edge-length", scene_options.meshing.target_edge_length);
+  if (!(scene_options.meshing.target_edge_length > 0.0))
+    throw UsageError("--edge-length must be positive (metres)");
+  const std::filesystem::path body_path = line.value("--body").value_or(default_body_path());
+  const std::shared_ptr<const Scene> scene = load_scene(pattern_path, body_path, scene_options);
+  const Garment& garment = *scene->garment;
+
+  SessionOptions options;
+  if (const auto parameters = line.value("--parameters"))
+    options.arrangement = load_parameters(*parameters);
+  if (line.has("--seed-pieces")) {
+    std::vector<std::string> names(kBodyLocationNames.begin(), kBodyLocationNames.end());
+    options.seed =
+        manual_seed(garment, line.list("--seed-pieces"), *line.value("--seed-location"), names);
+  }
+  options.order = piece_indices(garment, line.list("--order"), "--order");
+
+  Session session(scene, options);
+  TerminalProgress progress(!line.has("--quiet") && ::isatty(STDERR_FILENO));
+  const auto snapshots = line.value("--snapshots");
+  if (snapshots) std::filesystem::create_directories(*snapshots);
+  for (int index = 0; !session.done(); ++index) {
+    const Phase ran = session.step(&progress);
+    if (snapshots) {
+      char name[96];
+      std::snprintf(name, sizeof name, "%03d_batch%d_%s.obj", index, session.snapshot().batch,
+                    to_string(ran));
+      std::string file = name;
+      std::replace(file.begin(), file.end(), ' ', '_');
+      write_garment_obj(std::filesystem::path(*snapshots) / file, garment, session.positions());
+    }
+  }
+  progress.finish();
+
+  write_garment_obj(*output, garment, session.positions());
+  const BodyReference reference(scene->body->mesh);
+  const GarmentMetrics metrics = measure_garment(garment, session.positions(), &reference,
+                                                 expected_regions_from_names(garment));
+  const QualityVerdict verdict = judge_garment(garment, metrics);
+  if (const auto report = line.value("--report"))
+    write_file_atomically(*report, session_report_json(session, metrics, verdict) + "\n");
+
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!line.has("--quiet")) {
+    std::printf("%s: %zu pieces, %d vertices, %zu batches, seed: %s\n",
+                garment.pattern.source.c_str(), garment.pieces.size(), garment.vertex_count(),
+                session.report().batches.size(), session.report().seed.reason.c_str());
+    std::printf("wrote %s in %.2f s: %s\n", output->c_str(), seconds,
+                verdict.ok() ? "ok" : "fails quality check");
+    for (const QualityFailure& failure : verdict.failures)
+      std::printf("  %s: %s\n", std::string(failure_kind_name(failure.kind)).c_str(),
+                  failure.message.c_str());
+  }
+  return verdict.ok() ? kSuccess : kQualityFailed;
+}
+
+}  // namespace garment::cli

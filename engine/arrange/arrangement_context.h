@@ -1,0 +1,42 @@
+#pragma once
+// What every batch of one garment on one body shares: the garment graph, the aligner, and the
+// potentials whose elements span the whole garment (springs, bending, sewing, body repulsion,
+// gravity). Phases differ only in the ActiveSet they bind these to and in a few per-phase terms.
+
+#include <memory>
+
+#include "engine/arrange/alignment.h"
+#include "engine/arrange/arrangement_parameters.h"
+#include "engine/arrange/garment_graph.h"
+#include "engine/body/distance_grid.h"
+#include "engine/energy/bending_potential.h"
+#include "engine/energy/body_repulsion_potential.h"
+#include "engine/energy/gravity_potential.h"
+#include "engine/energy/sewing_potential.h"
+#include "engine/energy/stretch_potential.h"
+#include "engine/pattern/garment_mesh.h"
+
+namespace garment {
+
+struct ArrangementContext {
+  ArrangementContext(const Garment& garment, std::shared_ptr<const DistanceGrid> body,
+                     const ArrangementParameters& parameters);
+
+  const Garment& garment;
+  std::shared_ptr<const DistanceGrid> body;
+  ArrangementParameters parameters;
+  GarmentGraph graph;
+  PieceAligner aligner;
+  Eigen::VectorXd masses;  // #V kg
+
+  std::shared_ptr<StretchPotential> stretch;
+  std::shared_ptr<BendingPotential> bending;  // interior edges and consistent seams
+  std::shared_ptr<SewingPotential> sewing;
+  std::shared_ptr<BodyRepulsionPotential> body_repulsion;
+  std::shared_ptr<GravityPotential> gravity;
+
+  // Vertices of the given pieces, in piece order.
+  std::vector<int> vertices_of(const std::vector<int>& pieces) const;
+};
+
+}  // namespace garment

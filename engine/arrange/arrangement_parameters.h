@@ -1,0 +1,56 @@
+#pragma once
+// Everything the arrangement can be tuned with, with our defaults. The paper keeps its parameters
+// constant across all examples (§8) and gives the solver iteration budgets per step in its Fig. 5;
+// ours were chosen by measurement on the shared GarmentCode patterns (bench/bench_pipeline).
+
+#include "engine/arrange/selection.h"
+#include "engine/energy/energy_parameters.h"
+
+namespace garment {
+
+// Solver iterations of one step, on the first visit and on each revisit (§7.4: "more on revisits").
+struct StepBudget {
+  int first = 0;
+  int revisit = 0;
+  int iterations(int visit) const { return visit == 0 ? first : revisit; }
+};
+
+struct ArrangementParameters {
+  EnergyParameters energy;
+  SelectionParameters selection;
+
+  // §7.1: the domain is the batch plus this many rings of the sewing boundary on the arranged side.
+  int seam_rings = 2;
+  // §7.3: shape refinement widens it to this many rings; arranged vertices farther than
+  // `seam_rings` from the boundary stay softly fixed.
+  int refine_rings = 16;
+
+  StepBudget align{150, 400};
+  // §7.2: body repulsion is switched on `rings_per_round` rings at a time, breadth-first from the
+  // sewing boundary, with this budget per round; then a final round over everything.
+  int rings_per_round = 3;
+  StepBudget body_round{25, 50};
+  StepBudget body_final{100, 200};
+  StepBudget refine{150, 300};  // with self repulsion, default bending
+  StepBudget settle{100, 200};  // then with mild gravity
+
+  // Eq. 13 thresholds. θ: smallest dot of neighbour triangle normals inside the batch (in) and
+  // across its seams (out); strain: (length − rest) / rest of the batch's springs.
+  double theta_in_threshold = 0.0;    // a fold sharper than 90° inside a piece
+  double theta_out_threshold = -0.5;  // a fold sharper than 120° along a seam
+  double strain_threshold = 0.2;
+  // Folding asks for more iterations until flat (§7.4); bounded, so a piece that cannot flatten
+  // does not loop forever.
+  int max_flatten_revisits = 2;
+
+  // §5.2 seed shape solve.
+  int seed_iterations = 400;
+
+  // §4 post-process: a quasistatic settle of the whole garment.
+  int post_process_iterations = 600;
+  double post_process_sewing_factor = 10.0;    // "strong sewing"
+  double post_process_repulsion_factor = 3.0;  // "greater repulsion strength"
+  double post_process_gravity_factor = 1.0;
+};
+
+}  // namespace garment

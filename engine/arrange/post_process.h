@@ -1,0 +1,30 @@
+#pragma once
+// Post-process (paper §4): a quasistatic simulation of the whole arranged garment with stronger
+// sewing and repulsion and full gravity, which closes the seams and removes the intersections the
+// arrangement left. Cloth-cloth repulsion follows the arrangement order: every batch stays outside
+// the pieces arranged before it (the inside-outside relation the order established, §7.3).
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "engine/arrange/arrangement_context.h"
+#include "engine/arrange/batch_arrangement.h"
+#include "engine/core/observer.h"
+
+namespace garment {
+
+struct SessionReport;
+
+struct PostProcessReport {
+  int iterations = 0;
+  double seconds = 0.0;
+  double final_energy = 0.0;
+};
+
+// arranged: mask over pieces (waiting pieces stay out of the simulation). report: the batches (the
+// seed first) give the layering.
+PostProcessReport post_process(ArrangementContext& context, const SessionReport& report,
+                               const std::vector<bool>& arranged, Eigen::MatrixX3d& positions,
+                               Observer* observer, const IterateCallback& on_iterate = {});
+
+}  // namespace garment

@@ -1,0 +1,118 @@
+#include "engine/arrange/selection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <numeric>
+
+namespace garment {
+namespace {
+
+// Union-find over piece indices for combining candidates.
+struct PieceGroups {
+  explicit PieceGroups(int count) : parent(count) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int piece) {
+    while (parent[piece] != piece)
+      piece = parent[piece] = parent[parent[piece]];
+    return piece;
+  }
+  void join(int a, int b) { parent[find(a)] = find(b); }
+  std::vector<int> parent;
+};
+
+}  // namespace
+
+Selector::Selector(const Garment& garment, SelectionParameters parameters)
+    : garment_(garment),
+      parameters_(parameters),
+      relationship_(garment),
+      areas_(piece_rest_areas(garment)),
+      welded_(welded_vertices(garment)) {}
+
+double Selector::score(const std::vector<bool>& arranged, const std::vector<int>& pieces) const {
+  double sewn = 0.0, boundary = 0.0, area = 0.0, support = 0.0;
+  for (int piece : pieces) {
+    sewn += relationship_.sewn_length(arranged, piece);
+    boundary += relationship_.sewing_boundary_length(piece);
+    area += areas_[piece];
+    support += relationship_.score(arranged, piece);
+  }
+  const double coverage = boundary > 0.0 ? sewn / boundary : 0.0;
+  return coverage + parameters_.area_weight * area + parameters_.support_weight * support;
+}
+
+std::vector<Candidate> Selector::candidates(const std::vector<bool>& arranged,
+                                            const Eigen::MatrixX3d& positions) const {
+  const int piece_count = static_cast<int>(garment_.pieces.size());
+  // Which unarranged piece each arranged vertex is sewn to (the first one found).
+  std::vector<int> sewn_candidate(garment_.vertex_count(), -1);
+  std::vector<bool> is_candidate(piece_count, false);
+  for (Eigen::Index k = 0; k < garment_.sewing_pairs.rows(); ++k) {
+    for (int side = 0; side < 2; ++side) {
+      const int own = garment_.sewing_pairs(k, side), other = garment_.sewing_pairs(k, 1 - side);
+      const int own_piece = garment_.vertex_piece(own), other_piece = garment_.vertex_piece(other);
+      if (!arranged[own_piece] || arranged[other_piece]) continue;
+      sewn_candidate[own] = other_piece;
+      is_candidate[other_piece] = true;
+    }
+  }
+  // Sewing boundary edges of the arranged set: outline edges of arranged pieces whose two ends are
+  // sewn to one candidate. They meet at welded points, also across seams between arranged pieces.
+  struct BoundaryEdge {
+    int candidate;
+    Eigen::Vector3d direction;  // away from the shared point
+  };
+  std::map<int, std::vector<BoundaryEdge>> edges_at_point;
+  for (int p = 0; p < piece_count; ++p) {
+    if (!arranged[p]) continue;
+    const std::vector<int>& outline = garment_.pieces[p].outline;
+    for (std::size_t k = 0; k < outline.size(); ++k) {
+      const int a = outline[k], b = outline[(k + 1) % outline.size()];
+      if (sewn_candidate[a] < 0 || sewn_candidate[a] != sewn_candidate[b]) continue;
+      const Eigen::Vector3d ab = positions.row(b) - positions.row(a);
+      edges_at_point[welded_(a)].push_back({sewn_candidate[a], ab});
+      edges_at_point[welded_(b)].push_back({sewn_candidate[a], -ab});
+    }
+  }
+  PieceGroups groups(piece_count);
+  const double smooth = std::cos(parameters_.smooth_turn_degrees * std::numbers::pi / 180.0);
+  for (const auto& [point, edges] : edges_at_point) {
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      for (std::size_t j = i + 1; j < edges.size(); ++j) {
+        if (edges[i].candidate == edges[j].candidate) continue;
+        const double norms = edges[i].direction.norm() * edges[j].direction.norm();
+        // Continuing straight through the point means the two directions are opposite.
+        if (norms > 0.0 && -edges[i].direction.dot(edges[j].direction) / norms > smooth)
+          groups.join(edges[i].candidate, edges[j].candidate);
+      }
+    }
+  }
+  std::map<int, std::vector<int>> members;
+  for (int p = 0; p < piece_count; ++p)
+    if (is_candidate[p]) members[groups.find(p)].push_back(p);
+  std::vector<Candidate> result;
+  for (auto& [root, pieces] : members)
+    result.push_back({pieces, score(arranged, pieces)});
+  std::stable_sort(result.begin(), result.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+  return result;
+}
+
+std::vector<int> Selector::next_batch(const std::vector<bool>& arranged,
+                                      const Eigen::MatrixX3d& positions) const {
+  std::vector<int> batch;
+  int vertices = 0;
+  for (const Candidate& candidate : candidates(arranged, positions)) {
+    int candidate_vertices = 0;
+    for (int piece : candidate.pieces)
+      candidate_vertices += garment_.pieces[piece].vertex_count;
+    if (!batch.empty() && vertices + candidate_vertices > parameters_.batch_vertex_cap) break;
+    batch.insert(batch.end(), candidate.pieces.begin(), candidate.pieces.end());
+    vertices += candidate_vertices;
+    if (vertices >= parameters_.batch_vertex_cap) break;
+  }
+  return batch;
+}
+
+}  // namespace garment

@@ -1,0 +1,301 @@
+#include "engine/arrange/session.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "engine/arrange/post_process.h"
+#include "engine/seeding/seed_shape.h"
+
+namespace garment {
+namespace {
+
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// Forwards progress and cancellation to the session's observer (which may be null).
+class ForwardingObserver : public Observer {
+ public:
+  explicit ForwardingObserver(Observer* target) : target_(target) {}
+  void progress(std::string_view stage, double fraction) override {
+    if (target_) target_->progress(stage, fraction);
+  }
+  bool cancel_requested() const override { return target_ && target_->cancel_requested(); }
+
+ private:
+  Observer* target_;
+};
+
+}  // namespace
+
+const char* to_string(Phase phase) {
+  switch (phase) {
+    case Phase::Seed:
+      return "seed";
+    case Phase::Select:
+      return "select";
+    case Phase::Align:
+      return "align";
+    case Phase::RemoveBodyIntersections:
+      return "remove body intersections";
+    case Phase::Refine:
+      return "refine";
+    case Phase::Check:
+      return "check";
+    case Phase::PostProcess:
+      return "post-process";
+    case Phase::Done:
+      return "done";
+  }
+  return "?";
+}
+
+Session::Session(std::shared_ptr<const Scene> scene, SessionOptions options)
+    : scene_(std::move(scene)), options_(std::move(options)), started_(now_seconds()) {
+  const Garment& garment = *scene_->garment;
+  context_ = std::make_unique<ArrangementContext>(garment, scene_->sdf, options_.arrangement);
+  selector_ = std::make_unique<Selector>(garment, options_.arrangement.selection);
+  termination_ = std::make_unique<TerminationCheck>(garment);
+  automatic_seed_ = choose_seed(garment, scene_->classification);
+  state_.positions = scene_->initial_positions;
+  state_.arranged.assign(garment.pieces.size(), false);
+  state_.pieces.assign(garment.pieces.size(), PieceState::Waiting);
+  state_.explicit_order = options_.order;
+  checkpoint(true);
+}
+
+Session::~Session() = default;
+
+void Session::checkpoint(bool batch_complete) {
+  checkpoints_.push_back({state_, batch_complete});
+}
+
+Phase Session::checkpoint_phase(std::size_t index) const {
+  return checkpoints_.at(index).state.phase;
+}
+
+void Session::restore(std::size_t index) {
+  if (index >= checkpoints_.size()) return;
+  state_ = checkpoints_[index].state;
+  checkpoints_.resize(index + 1);
+}
+
+SessionSnapshot Session::snapshot() const {
+  SessionSnapshot snapshot;
+  snapshot.phase = state_.phase;
+  snapshot.running = state_.phase;
+  snapshot.batch = state_.batch_index;
+  snapshot.elapsed_seconds = now_seconds() - started_;
+  snapshot.positions = std::make_shared<const Eigen::MatrixX3d>(state_.positions);
+  snapshot.pieces = state_.pieces;
+  snapshot.order = state_.report.order;
+  return snapshot;
+}
+
+IterateCallback Session::live_snapshots(SessionObserver* observer, Phase running,
+                                        const int* iterations) {
+  if (!observer || options_.snapshot_interval <= 0.0) return {};
+  auto last = std::make_shared<double>(0.0);
+  return [this, observer, running, iterations, last](const Eigen::MatrixX3d& positions) {
+    const double now = now_seconds();
+    if (now - *last < options_.snapshot_interval) return;
+    *last = now;
+    SessionSnapshot snapshot;
+    snapshot.phase = state_.phase;
+    snapshot.running = running;
+    snapshot.batch = state_.batch_index;
+    snapshot.iteration = iterations ? *iterations : 0;
+    snapshot.elapsed_seconds = now - started_;
+    snapshot.positions = std::make_shared<const Eigen::MatrixX3d>(positions);
+    snapshot.pieces = state_.pieces;
+    snapshot.order = state_.report.order;
+    observer->snapshot(snapshot);
+  };
+}
+
+Phase Session::step(SessionObserver* observer) {
+  const Phase ran = state_.phase;
+  const State before = state_;
+  const double start = now_seconds();
+  switch (state_.phase) {
+    case Phase::Seed:
+      run_seed(observer);
+      break;
+    case Phase::Select:
+      run_select();
+      break;
+    case Phase::Align:
+      run_arrange_step(ArrangeStep::Align, observer);
+      break;
+    case Phase::RemoveBodyIntersections:
+      run_arrange_step(ArrangeStep::RemoveBodyIntersections, observer);
+      break;
+    case Phase::Refine:
+      run_arrange_step(ArrangeStep::Refine, observer);
+      break;
+    case Phase::Check:
+      run_check();
+      break;
+    case Phase::PostProcess:
+      run_post_process(observer);
+      break;
+    case Phase::Done:
+      return ran;
+  }
+  if (observer && observer->cancel_requested()) {
+    // A cancelled phase is undone: the session stays where it was, ready to continue.
+    state_ = before;
+    state_.report.cancelled = true;
+    return ran;
+  }
+  state_.report.seconds += now_seconds() - start;
+  checkpoint(ran == Phase::Seed || (ran == Phase::Check && !state_.batch));
+  if (observer) observer->snapshot(snapshot());
+  return ran;
+}
+
+void Session::run(SessionObserver* observer) {
+  while (!done()) {
+    step(observer);
+    if (observer && observer->cancel_requested()) return;
+  }
+}
+
+void Session::run_seed(SessionObserver* observer) {
+  const SeedPlan plan = options_.seed ? *options_.seed : automatic_seed_;
+  int iterations = 0;
+  ForwardingObserver forward(observer);
+  SeedShapeOptions seed_options;
+  seed_options.iterations = options_.arrangement.seed_iterations;
+  const SeedShapeReport shaped =
+      shape_seed(*scene_, plan, options_.arrangement.energy, state_.positions, &forward,
+                 live_snapshots(observer, Phase::Seed, &iterations), seed_options);
+  iterations = shaped.iterations;
+  for (int piece : plan.pieces()) {
+    state_.arranged[piece] = true;
+    state_.pieces[piece] = PieceState::Seed;
+    state_.report.order.push_back(piece);
+    state_.explicit_order.erase(
+        std::remove(state_.explicit_order.begin(), state_.explicit_order.end(), piece),
+        state_.explicit_order.end());
+  }
+  state_.report.seed = plan;
+  state_.report.phases.push_back({Phase::Seed, -1, 0, shaped.iterations, shaped.seconds});
+  state_.phase = Phase::Select;
+}
+
+std::vector<int> Session::next_explicit_batch() const {
+  // The first requested piece that can be aligned now (sewn to the arranged set), alone in its
+  // batch: an explicit order is how a user separates layers (§8.3.2), which one batch cannot.
+  const Garment& garment = *scene_->garment;
+  for (int piece : state_.explicit_order) {
+    if (state_.arranged[piece]) continue;
+    for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
+      const int a = garment.vertex_piece(garment.sewing_pairs(k, 0));
+      const int b = garment.vertex_piece(garment.sewing_pairs(k, 1));
+      if ((a == piece && state_.arranged[b]) || (b == piece && state_.arranged[a])) return {piece};
+    }
+  }
+  return {};
+}
+
+void Session::run_select() {
+  std::vector<int> pieces = next_explicit_batch();
+  if (pieces.empty()) pieces = selector_->next_batch(state_.arranged, state_.positions);
+  if (pieces.empty()) {
+    // Nothing left that is sewn to the arranged set. Pieces not connected to it are not placed.
+    state_.phase = options_.post_process ? Phase::PostProcess : Phase::Done;
+    return;
+  }
+  state_.batch.emplace(*context_, pieces, state_.arranged);
+  state_.batch_index = static_cast<int>(state_.report.batches.size());
+  state_.report.batches.push_back({pieces, {}, {}, 0.0});
+  state_.visit = 0;
+  state_.flatten_revisits = 0;
+  state_.seam_revisited = state_.grown = false;
+  for (int piece : pieces)
+    state_.pieces[piece] = PieceState::InBatch;
+  state_.phase = Phase::Align;
+}
+
+void Session::run_arrange_step(ArrangeStep step, SessionObserver* observer) {
+  const Phase running = state_.phase;
+  int iterations = 0;
+  ForwardingObserver forward(observer);
+  const StepRecord record = state_.batch->run(step, state_.visit, state_.positions, &forward,
+                                              live_snapshots(observer, running, &iterations));
+  state_.report.phases.push_back(
+      {running, state_.batch_index, state_.visit, record.iterations, record.seconds});
+  state_.report.batches[state_.batch_index].seconds += record.seconds;
+  state_.phase = step == ArrangeStep::Align                     ? Phase::RemoveBodyIntersections
+                 : step == ArrangeStep::RemoveBodyIntersections ? Phase::Refine
+                                                                : Phase::Check;
+}
+
+void Session::run_check() {
+  BatchArrangement& batch = *state_.batch;
+  BatchRecord& record = state_.report.batches[state_.batch_index];
+  record.check = termination_->measure(batch.batch_mask(), state_.positions);
+  const Revisit revisit =
+      TerminationCheck::decide(record.check, options_.arrangement, state_.flatten_revisits,
+                               state_.seam_revisited, state_.grown);
+  if (revisit == Revisit::Grow && !batch.grow()) state_.grown = true;  // nothing to grow by: accept
+  if (revisit != Revisit::None && !(revisit == Revisit::Grow && state_.grown)) {
+    record.revisits.push_back(to_string(revisit));
+    if (revisit == Revisit::Flatten) ++state_.flatten_revisits;
+    if (revisit == Revisit::Seam) state_.seam_revisited = true;
+    if (revisit == Revisit::Grow) {
+      state_.grown = true;
+      record.pieces = batch.pieces();
+      for (int piece : batch.pieces())
+        if (!state_.arranged[piece]) state_.pieces[piece] = PieceState::InBatch;
+    }
+    ++state_.visit;
+    state_.phase = Phase::Align;
+    return;
+  }
+  for (int piece : batch.pieces()) {
+    state_.arranged[piece] = true;
+    state_.pieces[piece] = PieceState::Arranged;
+    state_.report.order.push_back(piece);
+    state_.explicit_order.erase(
+        std::remove(state_.explicit_order.begin(), state_.explicit_order.end(), piece),
+        state_.explicit_order.end());
+  }
+  state_.batch.reset();
+  state_.phase = Phase::Select;
+}
+
+void Session::run_post_process(SessionObserver* observer) {
+  int iterations = 0;
+  ForwardingObserver forward(observer);
+  const PostProcessReport report =
+      post_process(*context_, state_.report, state_.arranged, state_.positions, &forward,
+                   live_snapshots(observer, Phase::PostProcess, &iterations));
+  state_.report.phases.push_back({Phase::PostProcess, -1, 0, report.iterations, report.seconds});
+  state_.phase = Phase::Done;
+}
+
+void Session::reorder(const std::vector<int>& order) {
+  // The latest batch-complete checkpoint whose arranged order is a prefix of the new order.
+  std::size_t keep = 0;
+  for (std::size_t i = 0; i < checkpoints_.size(); ++i) {
+    if (!checkpoints_[i].batch_complete) continue;
+    const std::vector<int>& done_order = checkpoints_[i].state.report.order;
+    if (done_order.size() <= order.size() &&
+        std::equal(done_order.begin(), done_order.end(), order.begin()))
+      keep = i;
+  }
+  restore(keep);
+  state_.explicit_order.clear();
+  for (int piece : order)
+    if (!state_.arranged[piece]) state_.explicit_order.push_back(piece);
+  options_.order = order;
+}
+
+void Session::reseed(std::optional<SeedPlan> seed) {
+  options_.seed = std::move(seed);
+  restore(0);
+}
+
+}  // namespace garment

@@ -1,0 +1,155 @@
+#pragma once
+// One arrangement of a pattern on a body as a step-able state machine (paper Fig. 5):
+//
+//   Seed → Select → Align → RemoveBodyIntersections → Refine → Check ─┬→ Select … (next batch)
+//                     ↑                                              ├→ Align … (revisit, §7.4)
+//                     └──────────────────────────────────────────────┘→ PostProcess → Done
+//
+// step() runs exactly one phase; run() steps to the end. The command line and the editor drive it
+// the same way; an observer sees progress, receives snapshots (also during solves, throttled) and
+// can cancel. The arrangement order is recorded; an explicit order and a manual seed are accepted.
+// A checkpoint is kept after every phase, so the editor can go back to any of them and continue,
+// and reorder() re-runs from the first batch that changes, reusing the state before it.
+// A session is used from one thread at a time.
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/arrange/arrangement_parameters.h"
+#include "engine/arrange/batch_arrangement.h"
+#include "engine/arrange/scene.h"
+#include "engine/arrange/termination.h"
+#include "engine/core/observer.h"
+#include "engine/seeding/seed_choice.h"
+
+namespace garment {
+
+enum class Phase { Seed, Select, Align, RemoveBodyIntersections, Refine, Check, PostProcess, Done };
+const char* to_string(Phase phase);
+
+enum class PieceState : unsigned char { Waiting, InBatch, Arranged, Seed };
+
+struct SessionOptions {
+  ArrangementParameters arrangement;
+  std::optional<SeedPlan> seed;  // manual seed (§5.1.2); the classifier's choice when empty
+  std::vector<int> order;        // explicit arrangement order (piece indices), may be partial
+  bool post_process = true;
+  // Seconds between snapshots sent to the observer during solves (the editor asks for ~30 ms).
+  double snapshot_interval = 0.03;
+};
+
+struct PhaseRecord {
+  Phase phase = Phase::Seed;
+  int batch = -1;  // -1 for seed and post-process
+  int visit = 0;
+  int iterations = 0;
+  double seconds = 0.0;
+};
+
+struct BatchRecord {
+  std::vector<int> pieces;  // after any growth
+  std::vector<std::string> revisits;
+  BatchCheck check;  // the last check
+  double seconds = 0.0;
+};
+
+struct SessionReport {
+  SeedPlan seed;
+  std::vector<int> order;  // pieces in the order they were arranged
+  std::vector<BatchRecord> batches;
+  std::vector<PhaseRecord> phases;
+  double seconds = 0.0;
+  bool cancelled = false;
+};
+
+struct SessionSnapshot {
+  Phase phase = Phase::Seed;    // the phase about to run (Done at the end)
+  Phase running = Phase::Seed;  // the phase being run when sent during a solve
+  int batch = -1;
+  int iteration = 0;  // solver iterations so far in the running phase
+  double elapsed_seconds = 0.0;
+  std::shared_ptr<const Eigen::MatrixX3d> positions;  // #V×3; rows of waiting pieces meaningless
+  std::vector<PieceState> pieces;
+  std::vector<int> order;
+};
+
+class SessionObserver : public Observer {
+ public:
+  virtual void snapshot(const SessionSnapshot& snapshot) { (void)snapshot; }
+};
+
+class Session {
+ public:
+  Session(std::shared_ptr<const Scene> scene, SessionOptions options = {});
+  ~Session();
+
+  const Scene& scene() const { return *scene_; }
+  const SessionOptions& options() const { return options_; }
+  Phase phase() const { return state_.phase; }
+  bool done() const { return state_.phase == Phase::Done; }
+
+  // Runs the current phase and moves to the next; returns the phase that ran. A cancelled phase
+  // leaves the session at its start (positions as before it), consistent and able to continue.
+  Phase step(SessionObserver* observer = nullptr);
+  void run(SessionObserver* observer = nullptr);
+
+  const Eigen::MatrixX3d& positions() const { return state_.positions; }
+  SessionSnapshot snapshot() const;
+  const SessionReport& report() const { return state_.report; }
+  // The seed the classifier proposes (used unless options().seed is set).
+  const SeedPlan& automatic_seed() const { return automatic_seed_; }
+
+  // Checkpoints: one before the first phase and one after each completed phase.
+  std::size_t checkpoint_count() const { return checkpoints_.size(); }
+  Phase checkpoint_phase(std::size_t index) const;
+  // Makes checkpoint `index` current and drops the later ones.
+  void restore(std::size_t index);
+
+  // Arranges in `order` from the first batch whose pieces differ from it, reusing the state
+  // before that batch. Also accepted before the session started.
+  void reorder(const std::vector<int>& order);
+  // Starts over from the seed with a manual seed (nullopt: the classifier's).
+  void reseed(std::optional<SeedPlan> seed);
+
+ private:
+  struct State {
+    Phase phase = Phase::Seed;
+    Eigen::MatrixX3d positions;
+    std::vector<bool> arranged;
+    std::vector<PieceState> pieces;
+    std::vector<int> explicit_order;        // what is left of the requested order
+    std::optional<BatchArrangement> batch;  // the batch in progress
+    int batch_index = -1;
+    int visit = 0, flatten_revisits = 0;
+    bool seam_revisited = false, grown = false;
+    SessionReport report;
+  };
+  struct Checkpoint {
+    State state;
+    bool batch_complete = false;  // taken right after a batch was accepted (or after the seed)
+  };
+
+  void run_seed(SessionObserver* observer);
+  void run_select();
+  void run_arrange_step(ArrangeStep step, SessionObserver* observer);
+  void run_check();
+  void run_post_process(SessionObserver* observer);
+  void checkpoint(bool batch_complete);
+  std::vector<int> next_explicit_batch() const;
+  IterateCallback live_snapshots(SessionObserver* observer, Phase running, const int* iterations);
+
+  std::shared_ptr<const Scene> scene_;
+  SessionOptions options_;
+  std::unique_ptr<ArrangementContext> context_;
+  std::unique_ptr<Selector> selector_;
+  std::unique_ptr<TerminationCheck> termination_;
+  SeedPlan automatic_seed_;
+  State state_;
+  std::vector<Checkpoint> checkpoints_;
+  double started_ = 0.0;  // steady clock seconds at construction, for snapshots
+};
+
+}  // namespace garment

@@ -1,0 +1,131 @@
+#include "engine/io/parameters_json.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <functional>
+#include <map>
+
+#include "engine/core/atomic_file.h"
+#include "engine/core/error.h"
+
+namespace garment {
+namespace {
+
+using Json = nlohmann::json;
+
+// Every tunable number, by its JSON key (dotted for nested groups).
+template <class Visit>
+void visit_parameters(ArrangementParameters& p, Visit&& visit) {
+  EnergyParameters& e = p.energy;
+  visit("energy.stretch_stiffness", e.stretch_stiffness);
+  visit("energy.dart_stiffness", e.dart_stiffness);
+  visit("energy.bending_stiffness", e.bending_stiffness);
+  visit("energy.alignment_bending_factor", e.alignment_bending_factor);
+  visit("energy.sewing_stiffness", e.sewing_stiffness);
+  visit("energy.fixing_stiffness", e.fixing_stiffness);
+  visit("energy.fabric_density", e.fabric_density);
+  visit("energy.gravity", e.gravity);
+  visit("energy.mild_gravity_factor", e.mild_gravity_factor);
+  visit("energy.centring_stiffness", e.centring_stiffness);
+  visit("energy.upward_stiffness", e.upward_stiffness);
+  visit("energy.body_distance_stiffness", e.body_distance_stiffness);
+  visit("energy.body_distance", e.body_distance);
+  visit("energy.repulsion_buffer", e.repulsion_buffer);
+  visit("energy.body_repulsion_stiffness", e.body_repulsion_stiffness);
+  visit("energy.self_repulsion_stiffness", e.self_repulsion_stiffness);
+  visit("energy.self_repulsion_search_radius", e.self_repulsion_search_radius);
+  visit("energy.self_repulsion_refresh_interval", e.self_repulsion_refresh_interval);
+  visit("selection.area_weight", p.selection.area_weight);
+  visit("selection.support_weight", p.selection.support_weight);
+  visit("selection.smooth_turn_degrees", p.selection.smooth_turn_degrees);
+  visit("selection.batch_vertex_cap", p.selection.batch_vertex_cap);
+  visit("seam_rings", p.seam_rings);
+  visit("refine_rings", p.refine_rings);
+  visit("align.first", p.align.first);
+  visit("align.revisit", p.align.revisit);
+  visit("rings_per_round", p.rings_per_round);
+  visit("body_round.first", p.body_round.first);
+  visit("body_round.revisit", p.body_round.revisit);
+  visit("body_final.first", p.body_final.first);
+  visit("body_final.revisit", p.body_final.revisit);
+  visit("refine.first", p.refine.first);
+  visit("refine.revisit", p.refine.revisit);
+  visit("settle.first", p.settle.first);
+  visit("settle.revisit", p.settle.revisit);
+  visit("theta_in_threshold", p.theta_in_threshold);
+  visit("theta_out_threshold", p.theta_out_threshold);
+  visit("strain_threshold", p.strain_threshold);
+  visit("max_flatten_revisits", p.max_flatten_revisits);
+  visit("seed_iterations", p.seed_iterations);
+  visit("post_process_iterations", p.post_process_iterations);
+  visit("post_process_sewing_factor", p.post_process_sewing_factor);
+  visit("post_process_repulsion_factor", p.post_process_repulsion_factor);
+  visit("post_process_gravity_factor", p.post_process_gravity_factor);
+}
+
+const Json* find_dotted(const Json& root, const std::string& key) {
+  const Json* node = &root;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t dot = key.find('.', start);
+    const std::string part =
+        key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (!node->is_object() || !node->contains(part)) return nullptr;
+    node = &(*node)[part];
+    if (dot == std::string::npos) return node;
+    start = dot + 1;
+  }
+}
+
+void collect_keys(const Json& node, const std::string& prefix, std::vector<std::string>& keys) {
+  for (const auto& [key, value] : node.items()) {
+    const std::string full = prefix.empty() ? key : prefix + "." + key;
+    if (value.is_object())
+      collect_keys(value, full, keys);
+    else
+      keys.push_back(full);
+  }
+}
+
+}  // namespace
+
+void apply_parameters_json(const std::string& json_text, const std::string& source,
+                           ArrangementParameters& parameters) {
+  const Json json = Json::parse(json_text, nullptr, false);
+  if (json.is_discarded() || !json.is_object()) throw_input_error(source, "", "not a JSON object");
+  std::vector<std::string> known;
+  visit_parameters(parameters, [&](const std::string& key, auto& value) {
+    known.push_back(key);
+    const Json* found = find_dotted(json, key);
+    if (!found) return;
+    if (!found->is_number()) throw_input_error(source, key, "must be a number");
+    value = found->get<std::remove_reference_t<decltype(value)>>();
+  });
+  std::vector<std::string> present;
+  collect_keys(json, "", present);
+  for (const std::string& key : present)
+    if (std::find(known.begin(), known.end(), key) == known.end())
+      throw_input_error(source, key, "unknown parameter");
+}
+
+ArrangementParameters load_parameters(const std::filesystem::path& path) {
+  ArrangementParameters parameters;
+  apply_parameters_json(read_file(path), path.string(), parameters);
+  return parameters;
+}
+
+std::string parameters_json(const ArrangementParameters& parameters) {
+  Json json = Json::object();
+  ArrangementParameters copy = parameters;
+  visit_parameters(copy, [&](const std::string& key, auto& value) {
+    Json* node = &json;
+    std::size_t start = 0;
+    for (std::size_t dot; (dot = key.find('.', start)) != std::string::npos; start = dot + 1)
+      node = &(*node)[key.substr(start, dot - start)];
+    (*node)[key.substr(start)] = value;
+  });
+  return json.dump(2);
+}
+
+}  // namespace garment

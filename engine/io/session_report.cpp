@@ -1,0 +1,82 @@
+#include "engine/io/session_report.h"
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+
+#include "engine/io/parameters_json.h"
+#include "engine/io/quality_json.h"
+
+namespace garment {
+namespace {
+
+nlohmann::json piece_names(const Garment& garment, const std::vector<int>& pieces) {
+  nlohmann::json names = nlohmann::json::array();
+  for (int piece : pieces)
+    names.push_back(garment.pieces[piece].name);
+  return names;
+}
+
+}  // namespace
+
+std::string session_report_json(const Session& session, const GarmentMetrics& metrics,
+                                const QualityVerdict& verdict) {
+  const Garment& garment = *session.scene().garment;
+  const SessionReport& report = session.report();
+  nlohmann::json json;
+  json["pattern"] = garment.pattern.source;
+  json["body"] = session.scene().body->mesh.source;
+  json["vertices"] = garment.vertex_count();
+  json["pieces"] = garment.pieces.size();
+  nlohmann::json seed;
+  seed["reason"] = report.seed.reason;
+  seed["manual"] = report.seed.manual;
+  seed["parts"] = nlohmann::json::array();
+  for (const SeedPart& part : report.seed.parts)
+    seed["parts"].push_back(
+        {{"pieces", piece_names(garment, part.pieces)}, {"location", part.location}});
+  json["seed"] = seed;
+  json["order"] = piece_names(garment, report.order);
+  json["batches"] = nlohmann::json::array();
+  for (const BatchRecord& batch : report.batches) {
+    int vertices = 0;
+    for (int piece : batch.pieces)
+      vertices += garment.pieces[piece].vertex_count;
+    json["batches"].push_back({{"pieces", piece_names(garment, batch.pieces)},
+                               {"vertices", vertices},
+                               {"revisits", batch.revisits},
+                               {"theta_in", batch.check.theta_in},
+                               {"theta_out", batch.check.theta_out},
+                               {"max_strain", batch.check.max_strain},
+                               {"seconds", batch.seconds}});
+  }
+  // Totals per phase kind, then every phase run in order.
+  std::map<std::string, std::pair<int, double>> totals;
+  nlohmann::json phases = nlohmann::json::array();
+  for (const PhaseRecord& phase : report.phases) {
+    auto& total = totals[to_string(phase.phase)];
+    total.first += phase.iterations;
+    total.second += phase.seconds;
+    phases.push_back({{"phase", to_string(phase.phase)},
+                      {"batch", phase.batch},
+                      {"visit", phase.visit},
+                      {"iterations", phase.iterations},
+                      {"seconds", phase.seconds}});
+  }
+  nlohmann::json per_phase = nlohmann::json::object();
+  for (const auto& [name, total] : totals)
+    per_phase[name] = {{"iterations", total.first}, {"seconds", total.second}};
+  json["phase_totals"] = per_phase;
+  json["phases"] = phases;
+  int revisits = 0;
+  for (const BatchRecord& batch : report.batches)
+    revisits += static_cast<int>(batch.revisits.size());
+  json["revisits"] = revisits;
+  json["seconds"] = report.seconds;
+  json["cancelled"] = report.cancelled;
+  json["quality"] = nlohmann::json::parse(quality_json(garment, metrics, verdict));
+  json["parameters"] = nlohmann::json::parse(parameters_json(session.options().arrangement));
+  return json.dump(2);
+}
+
+}  // namespace garment

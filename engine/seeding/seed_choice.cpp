@@ -1,0 +1,151 @@
+#include "engine/seeding/seed_choice.h"
+
+#include <algorithm>
+#include <set>
+
+#include "engine/core/error.h"
+#include "engine/seeding/sewing_relationship.h"
+
+namespace garment {
+namespace {
+
+// Groups of the class `wanted`, connected by stitches to `start` through groups of that class.
+std::vector<int> connected_groups_of_class(const Garment& garment,
+                                           const PieceClassification& classification, int start,
+                                           SeedClass wanted) {
+  std::set<int> found{start};
+  std::vector<int> frontier{start};
+  while (!frontier.empty()) {
+    const int group = frontier.back();
+    frontier.pop_back();
+    for (const StitchPairs& range : garment.stitches) {
+      const Stitch& stitch = garment.pattern.stitches[range.stitch];
+      const int a = classification.piece_group[stitch.a.panel],
+                b = classification.piece_group[stitch.b.panel];
+      for (const auto& [from, to] : {std::pair{a, b}, std::pair{b, a}}) {
+        if (from != group || found.count(to) || classification.group_class(to) != wanted) continue;
+        found.insert(to);
+        frontier.push_back(to);
+      }
+    }
+  }
+  return {found.begin(), found.end()};
+}
+
+std::vector<int> pieces_of(const PieceClassification& classification,
+                           const std::vector<int>& groups) {
+  std::vector<int> pieces;
+  for (int group : groups)
+    pieces.insert(pieces.end(), classification.groups[group].begin(),
+                  classification.groups[group].end());
+  std::sort(pieces.begin(), pieces.end());
+  return pieces;
+}
+
+// All groups of a class, most probable first.
+std::vector<int> groups_of_class(const PieceClassification& classification, SeedClass wanted) {
+  std::vector<int> groups;
+  for (int g = 0; g < static_cast<int>(classification.groups.size()); ++g)
+    if (classification.group_class(g) == wanted) groups.push_back(g);
+  std::stable_sort(groups.begin(), groups.end(), [&](int a, int b) {
+    return classification.probability(a, wanted) > classification.probability(b, wanted);
+  });
+  return groups;
+}
+
+}  // namespace
+
+std::vector<int> SeedPlan::pieces() const {
+  std::vector<int> all;
+  for (const SeedPart& part : parts)
+    all.insert(all.end(), part.pieces.begin(), part.pieces.end());
+  return all;
+}
+
+SeedPlan choose_seed(const Garment& garment, const PieceClassification& classification) {
+  SeedPlan plan;
+  // 1. The neck or waist piece: the most confident of either class.
+  int best = -1;
+  SeedClass best_class = SeedClass::Neck;
+  for (SeedClass wanted : {SeedClass::Neck, SeedClass::Waist}) {
+    for (int group : groups_of_class(classification, wanted)) {
+      if (best < 0 || classification.probability(group, wanted) >
+                          classification.probability(best, best_class)) {
+        best = group;
+        best_class = wanted;
+      }
+    }
+  }
+  if (best >= 0) {
+    const bool neck = best_class == SeedClass::Neck;
+    plan.parts.push_back({pieces_of(classification, connected_groups_of_class(
+                                                        garment, classification, best, best_class)),
+                          neck ? "neck" : "waist"});
+    plan.reason = neck ? "neck piece (classifier)" : "waist piece (classifier)";
+    return plan;
+  }
+  // 2. and 3. Front and back chest pieces, else front and back pelvis pieces.
+  const std::pair<SeedClass, SeedClass> pairs[] = {{SeedClass::FrontChest, SeedClass::BackChest},
+                                                   {SeedClass::FrontPelvis, SeedClass::BackPelvis}};
+  const std::pair<const char*, const char*> locations[] = {{"chest_front", "chest_back"},
+                                                           {"pelvis_front", "pelvis_back"}};
+  for (int tier = 0; tier < 2; ++tier) {
+    for (const auto& [wanted, location] : {std::pair{pairs[tier].first, locations[tier].first},
+                                           std::pair{pairs[tier].second, locations[tier].second}}) {
+      const std::vector<int> groups = groups_of_class(classification, wanted);
+      if (groups.empty()) continue;
+      plan.parts.push_back(
+          {pieces_of(classification,
+                     connected_groups_of_class(garment, classification, groups.front(), wanted)),
+           location});
+    }
+    if (!plan.parts.empty()) {
+      plan.reason = tier == 0 ? "chest pieces (classifier)" : "pelvis pieces (classifier)";
+      return plan;
+    }
+  }
+  // 4. No seed class found: the group with the most garment below its seams (Eq. 1), at the waist.
+  const SewingRelationship relationship(garment);
+  double best_support = -1.0;
+  for (int g = 0; g < static_cast<int>(classification.groups.size()); ++g) {
+    const std::vector<bool> from = relationship.mask(classification.groups[g]);
+    double support = 0.0;
+    for (int p = 0; p < relationship.piece_count(); ++p)
+      if (!from[p]) support += relationship.score(from, p);
+    if (support > best_support) {
+      best_support = support;
+      best = g;
+    }
+  }
+  plan.parts.push_back({classification.groups[best], "waist"});
+  plan.reason = "rule: most garment hanging below its seams";
+  return plan;
+}
+
+SeedPlan manual_seed(const Garment& garment, const std::vector<std::string>& piece_names,
+                     const std::string& location, const std::vector<std::string>& known_locations) {
+  if (piece_names.empty()) throw InputError("seed: no seed pieces given");
+  if (std::find(known_locations.begin(), known_locations.end(), location) ==
+      known_locations.end()) {
+    std::string list;
+    for (const std::string& name : known_locations)
+      list += (list.empty() ? "" : ", ") + name;
+    throw InputError("seed: unknown body location '" + location + "' (known: " + list + ")");
+  }
+  SeedPlan plan;
+  plan.manual = true;
+  plan.reason = "manual";
+  SeedPart part;
+  part.location = location;
+  for (const std::string& name : piece_names) {
+    const int piece = garment.pattern.panel_index(name);
+    if (piece < 0)
+      throw InputError(garment.pattern.source + ": seed: no panel named '" + name + "'");
+    if (std::find(part.pieces.begin(), part.pieces.end(), piece) == part.pieces.end())
+      part.pieces.push_back(piece);
+  }
+  plan.parts.push_back(part);
+  return plan;
+}
+
+}  // namespace garment

@@ -1,0 +1,38 @@
+#pragma once
+// The seed (paper §5): the piece(s) arranged first and the body location each goes to. Automatic:
+// the neck or waist piece (with the pieces of its kind sewn to it: a collar in four parts, a
+// waistband in two), else the chest pieces (front and back), else the pelvis pieces (front and
+// back, for skirts and trousers without a waistband), else a rule: the piece with the most garment
+// hanging below its seams (Eq. 1), as the neck or waist seed would have. Manual (§5.1.2): any set
+// of pieces and one of the 15 body locations.
+
+#include <string>
+#include <vector>
+
+#include "engine/pattern/garment_mesh.h"
+#include "engine/seeding/piece_classifier.h"
+
+namespace garment {
+
+// Pieces that go together to one body location.
+struct SeedPart {
+  std::vector<int> pieces;
+  std::string location;  // a body location name (body_locations.h)
+};
+
+struct SeedPlan {
+  std::vector<SeedPart> parts;
+  bool manual = false;
+  std::string reason;  // how it was chosen, for the report
+
+  std::vector<int> pieces() const;  // of all parts, in order
+};
+
+SeedPlan choose_seed(const Garment& garment, const PieceClassification& classification);
+
+// A manual seed from piece names and a location name; throws InputError naming the unknown piece
+// or location (known_locations lists the valid names).
+SeedPlan manual_seed(const Garment& garment, const std::vector<std::string>& piece_names,
+                     const std::string& location, const std::vector<std::string>& known_locations);
+
+}  // namespace garment

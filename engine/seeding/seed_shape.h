@@ -1,0 +1,42 @@
+#pragma once
+// Seed shape (paper §5.2): the seed pieces start on their body location's surface (wrapped around
+// a cylinder or laid on a plane, Fig. 3a) and take their shape by minimising
+//   F_init = F_cent + F_up + F_dist + F_def          (Eq. 3–5)
+// plus the sewing among the seed's own pieces (a collar in parts, front and back halves) and body
+// repulsion, so that the seed ends outside the body, centred and upright.
+
+#include <Eigen/Core>
+#include <functional>
+
+#include "engine/arrange/scene.h"
+#include "engine/core/observer.h"
+#include "engine/energy/energy_parameters.h"
+#include "engine/seeding/seed_choice.h"
+
+namespace garment {
+
+struct SeedShapeOptions {
+  int iterations = 400;  // ArrangementParameters::seed_iterations in a session
+  // Seed bending is stiffer than the arrangement's default (§5.2: "a relatively high default value
+  // for the bending stiffness"), by this factor.
+  double bending_factor = 10.0;
+};
+
+struct SeedShapeReport {
+  int iterations = 0;
+  double seconds = 0.0;
+  double final_energy = 0.0;
+};
+
+// Writes the seed pieces' rows of `positions` (#V×3). Throws InputError when a part names a
+// location that is not one of the 15.
+SeedShapeReport shape_seed(const Scene& scene, const SeedPlan& plan, const EnergyParameters& energy,
+                           Eigen::MatrixX3d& positions, Observer* observer = nullptr,
+                           const std::function<void(const Eigen::MatrixX3d&)>& on_iterate = {},
+                           const SeedShapeOptions& options = {});
+
+// Only the start: the pieces wrapped on or laid onto their locations' surfaces, no solve.
+void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double distance,
+                            Eigen::MatrixX3d& positions);
+
+}  // namespace garment
