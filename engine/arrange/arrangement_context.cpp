@@ -12,8 +12,8 @@ ArrangementContext::ArrangementContext(const Garment& garment_in,
       aligner(garment_in),
       masses(vertex_masses(garment_in, parameters_in.energy.fabric_density)) {
   const EnergyParameters& energy = parameters.energy;
-  stretch =
-      std::make_shared<StretchPotential>(garment, energy.stretch_stiffness, energy.dart_stiffness);
+  stretch = std::make_shared<StretchPotential>(
+      garment, energy.stretch_stiffness, energy.dart_stiffness, energy.stretch_compression_factor);
   std::vector<BendingStencil> stencils = interior_bending_stencils(garment);
   const std::vector<BendingStencil> seam = seam_bending_stencils(garment);
   stencils.insert(stencils.end(), seam.begin(), seam.end());

@@ -14,6 +14,8 @@ struct EnergyParameters {
   // F^def (§5.2): springs on mesh edges, E = ½ k (l − L)², k in N/m per edge. Dart pairs are
   // zero-length springs (they close the dart) with their own k, N/m.
   double stretch_stiffness = 1000.0;
+  // Fraction of k a compressed mesh-edge spring keeps (stretch_potential.h: cloth buckles).
+  double stretch_compression_factor = 1.0;
   double dart_stiffness = 1000.0;
   // F^def: quadratic bending (Bergou et al. 2006), E = ½ k Σ 3/(A₀+A₁) |Σ Kᵢ xᵢ|², k in J.
   // "Relatively high" (§5.2): with the model's factor of ~3.3 over the continuum energy

@@ -9,11 +9,13 @@
 namespace garment {
 namespace {
 
-// Hooke spring E = ½ k (l − L)², l = |x_i − x_j|. Adds ∂E/∂x_i to gradient_i (∂E/∂x_j is its
-// negative) and, when asked, the diagonal of the PSD-projected Hessian block (same for i and j).
-// A zero-length spring is the quadratic ½ k |x_i − x_j|² (smooth through l = 0).
+// Hooke spring E = ½ k (l − L)², l = |x_i − x_j|, with k scaled by `compression` when l < L. Adds
+// ∂E/∂x_i to gradient_i (∂E/∂x_j is its negative) and, when asked, the diagonal of the
+// PSD-projected Hessian block (same for i and j). A zero-length spring is the quadratic ½ k |x_i −
+// x_j|² (smooth through l = 0).
 inline double spring_energy(const Eigen::Vector3d& xi, const Eigen::Vector3d& xj, double rest,
-                            double k, Eigen::Vector3d& gradient_i, Eigen::Vector3d* diagonal) {
+                            double k, double compression, Eigen::Vector3d& gradient_i,
+                            Eigen::Vector3d* diagonal) {
   const Eigen::Vector3d d = xi - xj;
   if (rest == 0.0) {
     gradient_i = k * d;
@@ -22,6 +24,7 @@ inline double spring_energy(const Eigen::Vector3d& xi, const Eigen::Vector3d& xj
   }
   const double length = d.norm();
   const double stretch = length - rest;
+  if (stretch < 0.0) k *= compression;
   if (!(length > 0.0)) {  // direction undefined: no force, the isotropic bound
     gradient_i.setZero();
     if (diagonal) diagonal->setConstant(k);
@@ -40,8 +43,11 @@ inline double spring_energy(const Eigen::Vector3d& xi, const Eigen::Vector3d& xj
 
 }  // namespace
 
-StretchPotential::StretchPotential(const Garment& garment, double stiffness,
-                                   double dart_stiffness) {
+StretchPotential::StretchPotential(const Garment& garment, double stiffness, double dart_stiffness,
+                                   double compression_factor)
+    : compression_(compression_factor) {
+  if (!(compression_factor > 0.0 && compression_factor <= 1.0))
+    throw std::invalid_argument("StretchPotential: compression factor outside (0, 1]");
   const MeshEdges mesh = build_mesh_edges(garment.triangles, garment.vertex_count());
   springs_.reserve(static_cast<std::size_t>(mesh.edges.rows() + garment.dart_pairs.rows()));
   for (Eigen::Index e = 0; e < mesh.edges.rows(); ++e) {
@@ -98,7 +104,8 @@ double StretchPotential::accumulate(const Positions& x, int begin, int end,
     const Spring& spring = active_[s];
     const Eigen::Vector3d xi = Eigen::Vector3d::Map(position + 3 * spring.i);
     const Eigen::Vector3d xj = Eigen::Vector3d::Map(position + 3 * spring.j);
-    energy += spring_energy(xi, xj, spring.rest_length, spring.stiffness, gradient, diagonal_out);
+    energy += spring_energy(xi, xj, spring.rest_length, spring.stiffness, compression_, gradient,
+                            diagonal_out);
     out.gradient_row(spring.i) += gradient;
     out.gradient_row(spring.j) -= gradient;
     if (diagonal_out) {

@@ -6,6 +6,11 @@
 // every resolution. Darts (§3: same-piece stitches) are zero-length springs on the dart pairs,
 // which close the dart like a seam.
 //
+// A spring shorter than its rest length may be softer, k·c with c ∈ (0, 1]: woven cloth buckles
+// at almost no cost instead of resisting compression, and a gathered seam (a long edge sewn to a
+// short one, GarmentCode's ruffles and pleats) must shorten its edge without pushing the cloth
+// into folds. The energy stays C¹ at l = L (both branches have zero slope there).
+//
 // Hessian diagonal: of the per-spring block k[n nᵀ + max(0, 1 − L/l)(I − n nᵀ)] (n = unit edge
 // direction), the exact Hessian with the negative part of a compressed spring removed: exact for
 // springs at or beyond their rest length, larger than the exact (indefinite) one when compressed.
@@ -20,8 +25,10 @@ namespace garment {
 
 class StretchPotential : public Potential {
  public:
-  // Springs on every mesh edge of the garment and zero-length springs on its dart pairs.
-  StretchPotential(const Garment& garment, double stiffness, double dart_stiffness);
+  // Springs on every mesh edge of the garment and zero-length springs on its dart pairs;
+  // `compression_factor` scales k for compressed springs.
+  StretchPotential(const Garment& garment, double stiffness, double dart_stiffness,
+                   double compression_factor = 1.0);
   // Springs given explicitly: #S×2 vertex pairs, rest lengths (m, ≥ 0), stiffness (N/m) each.
   StretchPotential(const Eigen::MatrixX2i& springs, const Eigen::VectorXd& rest_lengths,
                    const Eigen::VectorXd& stiffness);
@@ -49,6 +56,7 @@ class StretchPotential : public Potential {
   std::vector<Spring> springs_;  // all, at the construction stiffness
   std::vector<Spring> active_;   // bound, stiffness scaled
   double scale_ = 1.0;
+  double compression_ = 1.0;
 };
 
 }  // namespace garment

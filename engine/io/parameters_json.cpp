@@ -19,6 +19,7 @@ template <class Visit>
 void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   EnergyParameters& e = p.energy;
   visit("energy.stretch_stiffness", e.stretch_stiffness);
+  visit("energy.stretch_compression_factor", e.stretch_compression_factor);
   visit("energy.dart_stiffness", e.dart_stiffness);
   visit("energy.bending_stiffness", e.bending_stiffness);
   visit("energy.alignment_bending_factor", e.alignment_bending_factor);

@@ -222,7 +222,8 @@ SeedShapeReport shape_seed(const Scene& scene, const SeedPlan& plan, const Energ
   stencils.insert(stencils.end(), seam.begin(), seam.end());
   objective
       .add(std::make_shared<StretchPotential>(garment, energy.stretch_stiffness,
-                                              energy.dart_stiffness))
+                                              energy.dart_stiffness,
+                                              energy.stretch_compression_factor))
       .add(std::make_shared<BendingPotential>(std::move(stencils),
                                               energy.bending_stiffness * options.bending_factor))
       .add(std::make_shared<SewingPotential>(garment.sewing_pairs, energy.sewing_stiffness))

@@ -99,6 +99,12 @@ Eigen::MatrixX3d random_state(const Garment& garment, double scale, double noise
 }
 
 // Most vertices free, every 7th fixed, every 31st outside the problem.
+double energy_of(const std::shared_ptr<Potential>& potential, const Eigen::MatrixX3d& x) {
+  Objective objective(ActiveSet(static_cast<int>(x.rows()), VertexRole::Free));
+  objective.add(potential);
+  return objective.evaluate(x, nullptr, nullptr, 1);
+}
+
 ActiveSet mixed_active_set(int vertex_count) {
   ActiveSet active(vertex_count, VertexRole::Free);
   for (int v = 0; v < vertex_count; v += 7)
@@ -170,6 +176,23 @@ class EnergyGradientsTest : public QObject {
     // Every spring stretched: the diagonal is exact.
     expect_exact("stretch (taut)",
                  check(potential, active_, random_state(garment_, 1.15, 5e-4, 8)));
+  }
+
+  void stretchSoftInCompression() {
+    auto soft = std::make_shared<StretchPotential>(garment_, 1000.0, 500.0, 0.1);
+    const FiniteDifferenceCheck general = check(soft, active_, state_);
+    QVERIFY(general.gradient_norm > 0.0);
+    QVERIFY(general.gradient_error <= 1e-5);
+    QVERIFY(general.max_diagonal_deficit <= 1e-4 * general.max_fd_diagonal);
+    // Uniformly shrunk by 10 %: every mesh-edge spring is compressed and costs a tenth; the
+    // zero-length dart springs are never "compressed" and cost the same in both.
+    const Eigen::MatrixX3d shrunk = random_state(garment_, 0.9, 0.0, 9);
+    auto hard = std::make_shared<StretchPotential>(garment_, 1000.0, 500.0);
+    auto darts_only = std::make_shared<StretchPotential>(garment_, 0.0, 500.0);
+    const double darts = energy_of(darts_only, shrunk);
+    QVERIFY(energy_of(hard, shrunk) - darts > 0.0);
+    QVERIFY(std::abs((energy_of(soft, shrunk) - darts) - 0.1 * (energy_of(hard, shrunk) - darts)) <=
+            1e-9 * energy_of(hard, shrunk));
   }
 
   void bending() {
