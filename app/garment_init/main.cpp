@@ -24,13 +24,15 @@ const Command kCommands[] = {
      "object {pieces, stitches, darts, vertices, triangles}.",
      garment::cli::inspect_command},
     {"run",
-     "run PATTERN.json [--body BODY.obj] -o OUT.obj [--report R.json] [--seed-pieces a,b "
+     "run PATTERN.json [--body BODY.obj] -o OUT.obj [--glb OUT.glb] [--report R.json] "
+     "[--seed-pieces a,b "
      "--seed-location NAME] "
      "[--order p1,p2,...] [--threads N] [--edge-length M] [--parameters P.json] [--snapshots DIR] "
      "[--quiet]",
      "Arranges the pattern on the body (default: the bundled mean body) and writes the garment "
      "OBJ\n"
-     "(one group per panel, vt = pattern coordinates). Seeds with the classifier unless "
+     "(one group per panel, vt = pattern coordinates); --glb also writes the garment and the body\n"
+     "as glTF 2.0 binary for viewers. Seeds with the classifier unless "
      "--seed-pieces\n"
      "and --seed-location (one of the 15 body locations, see `body`) are given; --order fixes the\n"
      "arrangement order of the named pieces. --report writes the order, batches, revisits, "

@@ -14,6 +14,7 @@
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
 #include "engine/io/garment_obj.h"
+#include "engine/io/glb_export.h"
 #include "engine/io/parameters_json.h"
 #include "engine/io/session_report.h"
 #include "engine/quality/garment_metrics.h"
@@ -109,6 +110,8 @@ int run_command(const std::vector<std::string>& args) {
   progress.finish();
 
   write_garment_obj(*output, garment, session.positions());
+  if (const auto glb = line.value("--glb"))
+    write_glb(*glb, garment_glb_meshes(garment, session.positions(), scene->body.get()));
   const BodyReference reference(scene->body->mesh);
   const GarmentMetrics metrics = measure_garment(garment, session.positions(), &reference,
                                                  expected_regions_from_names(garment));
