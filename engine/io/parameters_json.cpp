@@ -65,7 +65,9 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_gravity_factor", p.post_process_gravity_factor);
 }
 
+// `key` as written ("energy.stretch_stiffness") or as nested objects ({"energy": {...}}).
 const Json* find_dotted(const Json& root, const std::string& key) {
+  if (root.contains(key)) return &root[key];
   const Json* node = &root;
   std::size_t start = 0;
   for (;;) {

@@ -1,0 +1,72 @@
+// Arrangement parameters from JSON (`--parameters`): both spellings of a key take effect, and
+// anything that would be silently ignored is an error naming the key.
+
+#include <QtTest>
+
+#include "engine/core/error.h"
+#include "engine/io/parameters_json.h"
+
+using namespace garment;
+
+class ParametersJsonTest : public QObject {
+  Q_OBJECT
+
+  static ArrangementParameters applied(const std::string& text) {
+    ArrangementParameters parameters;
+    apply_parameters_json(text, "p.json", parameters);
+    return parameters;
+  }
+
+  static QString error_of(const std::string& text) {
+    try {
+      applied(text);
+    } catch (const InputError& error) {
+      return QString::fromStdString(error.what());
+    }
+    return {};
+  }
+
+ private slots:
+  void dottedKeysApply() {
+    const ArrangementParameters defaults;
+    const ArrangementParameters p =
+        applied(R"({"energy.stretch_stiffness": 1234.5, "align.first": 7})");
+    QCOMPARE(p.energy.stretch_stiffness, 1234.5);
+    QCOMPARE(p.align.first, 7);
+    QCOMPARE(p.energy.sewing_stiffness, defaults.energy.sewing_stiffness);
+  }
+
+  void nestedKeysApply() {
+    const ArrangementParameters p =
+        applied(R"({"energy": {"stretch_compression_factor": 0.25}, "refine": {"revisit": 9}})");
+    QCOMPARE(p.energy.stretch_compression_factor, 0.25);
+    QCOMPARE(p.refine.revisit, 9);
+  }
+
+  void unknownKeyNamesTheKey() {
+    const QString message = error_of(R"({"energy.stretch_stifness": 1})");
+    QVERIFY2(message.contains("p.json") && message.contains("energy.stretch_stifness"),
+             qPrintable(message));
+  }
+
+  void wrongTypeNamesTheKey() {
+    const QString message = error_of(R"({"energy": {"gravity": "strong"}})");
+    QVERIFY2(message.contains("energy.gravity") && message.contains("number"), qPrintable(message));
+    QVERIFY(!error_of("[1, 2]").isEmpty());
+    QVERIFY(!error_of("{").isEmpty());
+  }
+
+  void reportedParametersReadBack() {
+    ArrangementParameters changed;
+    changed.energy.bending_stiffness = 0.004;
+    changed.settle.first = 33;
+    changed.post_process_gravity_factor = 0.5;
+    const ArrangementParameters back = applied(parameters_json(changed));
+    QCOMPARE(back.energy.bending_stiffness, 0.004);
+    QCOMPARE(back.settle.first, 33);
+    QCOMPARE(back.post_process_gravity_factor, 0.5);
+  }
+};
+
+QTEST_APPLESS_MAIN(ParametersJsonTest)
+#include "test_parameters_json.moc"
