@@ -1,0 +1,321 @@
+// The arrangement session (engine/arrange/session.h) as a state machine, on a real pattern
+// (tests/data/patterns/gc_0012_specification.json: a skirt in two panels with a two-part
+// waistband) and the bundled body, with small iteration budgets and one piece per batch so that
+// several batches run in a few seconds:
+// - step() runs exactly one phase: it returns the phase that was current, adds one checkpoint
+//   and at most one phase record, and moves along the documented transitions only;
+// - piece states and the recorded order follow the batches;
+// - restore(i) gives back checkpoint i exactly (positions, phase) and drops the later ones;
+// - reorder() with the order already arranged leaves the state unchanged at batch boundaries;
+// - a cancelled step leaves the session as before the step, and it continues from there.
+
+#include <QtTest>
+
+#include <map>
+#include <set>
+
+#include "engine/arrange/session.h"
+#include "engine/body/default_body.h"
+#include "support/test_paths.h"
+
+using namespace garment;
+
+namespace {
+
+const char* kPattern = "patterns/gc_0012_specification.json";
+
+ArrangementParameters small_budgets() {
+  ArrangementParameters parameters;
+  parameters.align = {12, 12};
+  parameters.body_round = {3, 3};
+  parameters.body_final = {6, 6};
+  parameters.refine = {6, 6};
+  parameters.settle = {4, 4};
+  parameters.seed_iterations = 30;
+  parameters.post_process_iterations = 10;
+  parameters.selection.batch_vertex_cap = 1;  // one piece per batch
+  return parameters;
+}
+
+SessionOptions small_options() {
+  SessionOptions options;
+  options.arrangement = small_budgets();
+  return options;
+}
+
+bool solves(Phase phase) {
+  return phase == Phase::Seed || phase == Phase::Align || phase == Phase::RemoveBodyIntersections ||
+         phase == Phase::Refine || phase == Phase::PostProcess;
+}
+
+// The transitions of session.h's diagram.
+bool allowed(Phase from, Phase to, bool post_process) {
+  switch (from) {
+    case Phase::Seed:
+      return to == Phase::Select;
+    case Phase::Select:
+      return to == Phase::Align || to == (post_process ? Phase::PostProcess : Phase::Done);
+    case Phase::Align:
+      return to == Phase::RemoveBodyIntersections;
+    case Phase::RemoveBodyIntersections:
+      return to == Phase::Refine;
+    case Phase::Refine:
+      return to == Phase::Check;
+    case Phase::Check:
+      return to == Phase::Select || to == Phase::Align;
+    case Phase::PostProcess:
+      return to == Phase::Done;
+    case Phase::Done:
+      return to == Phase::Done;
+  }
+  return false;
+}
+
+// Records what the session sends; cancels when asked to.
+class Recorder : public SessionObserver {
+ public:
+  explicit Recorder(bool cancel = false) : cancel_(cancel) {}
+  void progress(std::string_view, double) override { ++progress_calls; }
+  void snapshot(const SessionSnapshot& snapshot) override { snapshots.push_back(snapshot); }
+  bool cancel_requested() const override { return cancel_; }
+
+  int progress_calls = 0;
+  std::vector<SessionSnapshot> snapshots;
+
+ private:
+  bool cancel_;
+};
+
+// Steps until the session is in `phase` (at most `limit` steps); false if it never gets there.
+bool step_until(Session& session, Phase phase, int limit = 200) {
+  for (int k = 0; k < limit && session.phase() != phase; ++k) {
+    if (session.done()) return false;
+    session.step();
+  }
+  return session.phase() == phase;
+}
+
+}  // namespace
+
+class SessionTest : public QObject {
+  Q_OBJECT
+
+  std::shared_ptr<const Scene> scene_;
+
+ private slots:
+  void initTestCase() {
+    QElapsedTimer timer;
+    timer.start();
+    SceneOptions options;
+    options.distance_field.spacing = 0.01;  // coarse: the tests are about the state machine
+    scene_ = load_scene(test::test_data(kPattern), default_body_path(), options);
+    qInfo("scene loaded in %.1f s: %zu pieces, %d vertices", timer.elapsed() / 1000.0,
+          scene_->garment->pieces.size(), scene_->garment->vertex_count());
+  }
+
+  void step_runs_exactly_one_phase_along_the_documented_transitions() {
+    QElapsedTimer timer;
+    timer.start();
+    // An explicit order of every piece: the pieces after the seed come one per batch.
+    SessionOptions options = small_options();
+    for (int piece = 0; piece < static_cast<int>(scene_->garment->pieces.size()); ++piece)
+      options.order.push_back(piece);
+    Session session(scene_, options);
+    const Garment& garment = *scene_->garment;
+    QCOMPARE(session.phase(), Phase::Seed);
+    QCOMPARE(session.checkpoint_count(), std::size_t{1});
+    QCOMPARE(session.checkpoint_phase(0), Phase::Seed);
+    QCOMPARE(session.positions(), scene_->initial_positions);
+
+    std::map<Phase, int> ran_count;
+    int steps = 0;
+    while (!session.done()) {
+      QVERIFY2(steps < 300, "the session does not end");
+      const Phase before = session.phase();
+      const std::size_t checkpoints = session.checkpoint_count();
+      const std::size_t records = session.report().phases.size();
+      const std::size_t batches = session.report().batches.size();
+      const std::vector<int> order = session.report().order;
+      Recorder recorder;
+      const Phase ran = session.step(&recorder);
+      ++steps;
+      ++ran_count[ran];
+      const Phase after = session.phase();
+      QCOMPARE(ran, before);
+      QVERIFY2(allowed(before, after, true),
+               qPrintable(QString("%1 -> %2").arg(to_string(before), to_string(after))));
+      QCOMPARE(session.checkpoint_count(), checkpoints + 1);
+      QCOMPARE(session.checkpoint_phase(checkpoints), after);
+      QCOMPARE(session.checkpoint_phase(checkpoints - 1), before);
+      // One phase record for a solving phase, none for select and check.
+      QCOMPARE(session.report().phases.size(), records + (solves(before) ? 1 : 0));
+      if (solves(before)) QCOMPARE(session.report().phases.back().phase, before);
+      QVERIFY(!session.report().cancelled);
+      // The observer hears about this phase only, and gets the new state last.
+      QVERIFY(!recorder.snapshots.empty());
+      for (std::size_t k = 0; k + 1 < recorder.snapshots.size(); ++k)
+        QCOMPARE(recorder.snapshots[k].running, before);
+      QCOMPARE(recorder.snapshots.back().phase, after);
+      QCOMPARE(*recorder.snapshots.back().positions, session.positions());
+
+      const SessionSnapshot state = session.snapshot();
+      if (before == Phase::Seed) {
+        QCOMPARE(session.report().order, session.report().seed.pieces());
+        QVERIFY(!session.report().order.empty());
+        for (int piece : session.report().order)
+          QCOMPARE(state.pieces[piece], PieceState::Seed);
+      }
+      if (before == Phase::Select && after == Phase::Align) {
+        QCOMPARE(session.report().batches.size(), batches + 1);
+        const std::vector<int>& batch = session.report().batches.back().pieces;
+        QCOMPARE(batch.size(), std::size_t{1});  // explicit order: one piece per batch
+        QCOMPARE(state.batch, static_cast<int>(batches));
+        for (int piece : batch)
+          QCOMPARE(state.pieces[piece], PieceState::InBatch);
+      }
+      if (before == Phase::Check && after == Phase::Select) {
+        // The batch is accepted: its pieces are arranged, in the recorded order.
+        const std::vector<int>& batch = session.report().batches.back().pieces;
+        std::vector<int> expected = order;
+        expected.insert(expected.end(), batch.begin(), batch.end());
+        QCOMPARE(session.report().order, expected);
+        for (int piece : batch)
+          QCOMPARE(state.pieces[piece], PieceState::Arranged);
+      } else if (before != Phase::Seed) {
+        QCOMPARE(session.report().order, order);
+      }
+    }
+    QCOMPARE(ran_count[Phase::Seed], 1);
+    QCOMPARE(ran_count[Phase::PostProcess], 1);
+    QVERIFY(ran_count[Phase::Check] >= 2);
+    QCOMPARE(ran_count[Phase::Align], ran_count[Phase::Check]);
+    // Every piece is arranged once.
+    std::vector<int> order = session.report().order;
+    QCOMPARE(order.size(), garment.pieces.size());
+    QCOMPARE(std::set<int>(order.begin(), order.end()).size(), garment.pieces.size());
+    QVERIFY(session.positions().allFinite());
+
+    // Done is final: stepping changes nothing.
+    const std::size_t checkpoints = session.checkpoint_count();
+    QCOMPARE(session.step(), Phase::Done);
+    QCOMPARE(session.phase(), Phase::Done);
+    QCOMPARE(session.checkpoint_count(), checkpoints);
+    qInfo("%d steps in %.1f s", steps, timer.elapsed() / 1000.0);
+  }
+
+  void without_post_process_select_ends_the_session() {
+    SessionOptions options = small_options();
+    options.post_process = false;
+    Session session(scene_, options);
+    Phase previous = session.phase();
+    for (int k = 0; k < 300 && !session.done(); ++k) {
+      session.step();
+      QVERIFY(allowed(previous, session.phase(), false));
+      QVERIFY(session.phase() != Phase::PostProcess);
+      previous = session.phase();
+    }
+    QVERIFY(session.done());
+  }
+
+  void restore_gives_back_the_checkpoint_exactly() {
+    Session session(scene_, small_options());
+    std::vector<Eigen::MatrixX3d> positions = {session.positions()};
+    std::vector<Phase> phases = {session.phase()};
+    while (!session.done()) {
+      session.step();
+      positions.push_back(session.positions());
+      phases.push_back(session.phase());
+    }
+    QCOMPARE(session.checkpoint_count(), positions.size());
+    for (std::size_t i = 0; i < positions.size(); ++i)
+      QCOMPARE(session.checkpoint_phase(i), phases[i]);
+
+    // From the last checkpoint backwards, skipping some; each restore drops the later ones.
+    const std::size_t last = positions.size() - 1;
+    for (std::size_t i : {last, last - 1, last / 2 + 1, last / 2, std::size_t{3}, std::size_t{1}}) {
+      session.restore(i);
+      QCOMPARE(session.checkpoint_count(), i + 1);
+      QCOMPARE(session.phase(), phases[i]);
+      QVERIFY2(session.positions() == positions[i], qPrintable(QString("checkpoint %1").arg(i)));
+      QCOMPARE(*session.snapshot().positions, positions[i]);
+    }
+    // Out of range: nothing happens.
+    session.restore(100);
+    QCOMPARE(session.checkpoint_count(), std::size_t{2});
+    QVERIFY(session.positions() == positions[1]);
+
+    // The session continues from a restored checkpoint along the same phases.
+    session.step();
+    QCOMPARE(session.phase(), phases[2]);
+    session.restore(0);
+    QCOMPARE(session.phase(), Phase::Seed);
+    QVERIFY(session.positions() == positions[0]);
+    QVERIFY(session.report().order.empty());
+    QVERIFY(session.report().batches.empty());
+  }
+
+  void reorder_with_the_same_order_leaves_the_state_unchanged() {
+    Session session(scene_, small_options());
+    // Before the first step and at the batch boundaries (after the seed, after the first
+    // batch).
+    auto check_unchanged = [&](const char* where) {
+      const Eigen::MatrixX3d positions = session.positions();
+      const Phase phase = session.phase();
+      const std::size_t checkpoints = session.checkpoint_count();
+      const std::vector<int> order = session.report().order;
+      const std::size_t batches = session.report().batches.size();
+      session.reorder(order);
+      QVERIFY2(session.phase() == phase,
+               qPrintable(QString("%1: phase %2 became %3")
+                              .arg(where, to_string(phase), to_string(session.phase()))));
+      QVERIFY2(session.positions() == positions, where);
+      QCOMPARE(session.checkpoint_count(), checkpoints);
+      QCOMPARE(session.report().order, order);
+      QCOMPARE(session.report().batches.size(), batches);
+    };
+    check_unchanged("before the seed");
+    session.step();
+    QCOMPARE(session.phase(), Phase::Select);
+    check_unchanged("after the seed");
+    QVERIFY(step_until(session, Phase::Align));
+    QVERIFY(step_until(session, Phase::Select));  // through any revisits of the first batch
+    QCOMPARE(session.report().batches.size(), std::size_t{1});
+    check_unchanged("after the first batch");
+  }
+
+  void cancelled_step_leaves_the_state_as_before() {
+    Session session(scene_, small_options());
+    for (Phase target : {Phase::Seed, Phase::Select, Phase::Align, Phase::RemoveBodyIntersections,
+                         Phase::Refine, Phase::Check}) {
+      QVERIFY(step_until(session, target));
+      const Eigen::MatrixX3d positions = session.positions();
+      const std::size_t checkpoints = session.checkpoint_count();
+      const std::size_t records = session.report().phases.size();
+      const std::size_t batches = session.report().batches.size();
+      const std::vector<int> order = session.report().order;
+      const std::vector<PieceState> pieces = session.snapshot().pieces;
+      Recorder cancelling(true);
+      QCOMPARE(session.step(&cancelling), target);
+      QCOMPARE(session.phase(), target);
+      QVERIFY2(session.positions() == positions, to_string(target));
+      QCOMPARE(session.checkpoint_count(), checkpoints);
+      QCOMPARE(session.report().phases.size(), records);
+      QCOMPARE(session.report().batches.size(), batches);
+      QCOMPARE(session.report().order, order);
+      QCOMPARE(session.snapshot().pieces, pieces);
+      QVERIFY(session.report().cancelled);
+      // run() stops at once too.
+      session.run(&cancelling);
+      QCOMPARE(session.phase(), target);
+      QVERIFY(session.positions() == positions);
+      // And the session goes on from there.
+      Recorder recorder;
+      QCOMPARE(session.step(&recorder), target);
+      QCOMPARE(session.checkpoint_count(), checkpoints + 1);
+      QVERIFY(allowed(target, session.phase(), true));
+    }
+  }
+};
+
+QTEST_APPLESS_MAIN(SessionTest)
+#include "test_session.moc"
