@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/body/body_surface.h"
+
 namespace garment {
 
 double DistanceGrid::value(const Eigen::Vector3d& point) const {
@@ -12,6 +14,13 @@ double DistanceGrid::value(const Eigen::Vector3d& point) const {
 
 double DistanceGrid::value_and_gradient(const Eigen::Vector3d& point,
                                         Eigen::Vector3d& gradient) const {
+  double exact;
+  if (surface && surface->signed_distance(point, exact, gradient)) return exact;
+  return interpolated_value_and_gradient(point, gradient);
+}
+
+double DistanceGrid::interpolated_value_and_gradient(const Eigen::Vector3d& point,
+                                                     Eigen::Vector3d& gradient) const {
   gradient.setZero();
   if (values.empty()) return 0.0;
   const Eigen::Vector3d upper = origin + spacing * (size.cast<double>() - Eigen::Vector3d::Ones());

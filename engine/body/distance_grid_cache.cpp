@@ -1,5 +1,6 @@
 #include "engine/body/distance_grid_cache.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -13,7 +14,7 @@ namespace garment {
 namespace {
 
 // Bump when the algorithm or the layout changes: old files then simply stop matching.
-constexpr std::uint64_t kFormatVersion = 1;
+constexpr std::uint64_t kFormatVersion = 2;
 constexpr std::array<char, 8> kMagic = {'G', 'S', 'S', 'D', 'F', 'B', 'I', 'N'};
 
 // 64-bit multiply-xor hash over 8-byte words (the tail zero-padded), with a final avalanche.
@@ -46,8 +47,34 @@ struct Header {
   std::int32_t size[3];
   std::int32_t padding;
   std::uint64_t value_count;
-  std::uint64_t checksum;  // of the samples
+  std::int32_t cells[3];  // the triangle lists (see CellTriangleLists)
+  std::int32_t blocks[3];
+  std::uint64_t block_count, start_count, entry_count, outside_count;
+  std::uint64_t checksum;  // of the samples and the lists
 };
+
+std::uint64_t checksum_of(const DistanceGrid& grid, const CellTriangleLists& lists,
+                          std::uint64_t key) {
+  std::uint64_t hash = hash_bytes(grid.values.data(), grid.values.size() * sizeof(float), key);
+  hash = hash_bytes(lists.block_of.data(), lists.block_of.size() * sizeof(std::int32_t), hash);
+  hash = hash_bytes(lists.starts.data(), lists.starts.size() * sizeof(std::uint32_t), hash);
+  hash = hash_bytes(lists.entries.data(), lists.entries.size() * sizeof(CellTriangleLists::Entry),
+                    hash);
+  return hash_bytes(lists.triangle_outside.data(), lists.triangle_outside.size(), hash);
+}
+
+template <typename T>
+bool read_array(std::istream& in, std::vector<T>& array, std::uint64_t count) {
+  array.resize(count);
+  return static_cast<bool>(in.read(reinterpret_cast<char*>(array.data()),
+                                   static_cast<std::streamsize>(count * sizeof(T))));
+}
+
+template <typename T>
+void write_array(std::ostream& out, const std::vector<T>& array) {
+  out.write(reinterpret_cast<const char*>(array.data()),
+            static_cast<std::streamsize>(array.size() * sizeof(T)));
+}
 
 }  // namespace
 
@@ -65,15 +92,17 @@ std::string distance_grid_cache_name(std::uint64_t key) {
   return name;
 }
 
-std::optional<DistanceGrid> read_distance_grid_cache(const std::filesystem::path& file,
-                                                     std::uint64_t key) {
+std::optional<CachedDistanceGrid> read_distance_grid_cache(const std::filesystem::path& file,
+                                                           std::uint64_t key) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return std::nullopt;
   Header header;
   if (!in.read(reinterpret_cast<char*>(&header), sizeof header)) return std::nullopt;
   if (header.magic != kMagic || header.version != kFormatVersion || header.key != key)
     return std::nullopt;
-  DistanceGrid grid;
+  CachedDistanceGrid cached;
+  DistanceGrid& grid = cached.grid;
+  CellTriangleLists& lists = cached.lists;
   grid.origin = Eigen::Vector3d(header.origin[0], header.origin[1], header.origin[2]);
   grid.spacing = header.spacing;
   grid.size = Eigen::Vector3i(header.size[0], header.size[1], header.size[2]);
@@ -83,20 +112,39 @@ std::optional<DistanceGrid> read_distance_grid_cache(const std::filesystem::path
   const std::uint64_t count = static_cast<std::uint64_t>(grid.size.x()) * grid.size.y() *
                               static_cast<std::uint64_t>(grid.size.z());
   if (count != header.value_count) return std::nullopt;
+  lists.cells = Eigen::Vector3i(header.cells[0], header.cells[1], header.cells[2]);
+  lists.blocks = Eigen::Vector3i(header.blocks[0], header.blocks[1], header.blocks[2]);
+  // The lists must fit the grid and be internally consistent, so that queries stay in bounds.
+  if (lists.cells != grid.size - Eigen::Vector3i::Ones() ||
+      lists.blocks != (lists.cells + Eigen::Vector3i::Constant(7)) / 8 ||
+      header.block_count != static_cast<std::uint64_t>(lists.blocks.prod()) ||
+      header.start_count % 512 != 1)
+    return std::nullopt;
   std::error_code error;
   const std::uintmax_t file_size = std::filesystem::file_size(file, error);
-  if (error || file_size != sizeof header + count * sizeof(float)) return std::nullopt;
-  grid.values.resize(count);
-  if (!in.read(reinterpret_cast<char*>(grid.values.data()),
-               static_cast<std::streamsize>(count * sizeof(float))))
+  if (error || file_size != sizeof header + count * sizeof(float) +
+                                header.block_count * sizeof(std::int32_t) +
+                                header.start_count * sizeof(std::uint32_t) +
+                                header.entry_count * sizeof(CellTriangleLists::Entry) +
+                                header.outside_count)
     return std::nullopt;
-  if (hash_bytes(grid.values.data(), count * sizeof(float), key) != header.checksum)
+  if (!read_array(in, grid.values, count) || !read_array(in, lists.block_of, header.block_count) ||
+      !read_array(in, lists.starts, header.start_count) ||
+      !read_array(in, lists.entries, header.entry_count) ||
+      !read_array(in, lists.triangle_outside, header.outside_count))
     return std::nullopt;
-  return grid;
+  if (checksum_of(grid, lists, key) != header.checksum) return std::nullopt;
+  const std::int64_t stored = static_cast<std::int64_t>(header.start_count / 512);
+  for (const std::int32_t block : lists.block_of)
+    if (block < -1 || block >= stored) return std::nullopt;
+  if (lists.starts.front() != 0 || lists.starts.back() != lists.entries.size() ||
+      !std::is_sorted(lists.starts.begin(), lists.starts.end()))
+    return std::nullopt;
+  return cached;
 }
 
 bool write_distance_grid_cache(const std::filesystem::path& file, std::uint64_t key,
-                               const DistanceGrid& grid) {
+                               const DistanceGrid& grid, const CellTriangleLists& lists) {
   Header header{};
   header.magic = kMagic;
   header.version = kFormatVersion;
@@ -104,16 +152,25 @@ bool write_distance_grid_cache(const std::filesystem::path& file, std::uint64_t 
   for (int axis = 0; axis < 3; ++axis) {
     header.origin[axis] = grid.origin[axis];
     header.size[axis] = grid.size[axis];
+    header.cells[axis] = lists.cells[axis];
+    header.blocks[axis] = lists.blocks[axis];
   }
   header.spacing = grid.spacing;
   header.value_count = grid.values.size();
-  header.checksum = hash_bytes(grid.values.data(), grid.values.size() * sizeof(float), key);
+  header.block_count = lists.block_of.size();
+  header.start_count = lists.starts.size();
+  header.entry_count = lists.entries.size();
+  header.outside_count = lists.triangle_outside.size();
+  header.checksum = checksum_of(grid, lists, key);
   try {
     std::filesystem::create_directories(file.parent_path());
     write_file_atomically(file, [&](std::ostream& out) {
       out.write(reinterpret_cast<const char*>(&header), sizeof header);
-      out.write(reinterpret_cast<const char*>(grid.values.data()),
-                static_cast<std::streamsize>(grid.values.size() * sizeof(float)));
+      write_array(out, grid.values);
+      write_array(out, lists.block_of);
+      write_array(out, lists.starts);
+      write_array(out, lists.entries);
+      write_array(out, lists.triangle_outside);
     });
   } catch (const std::exception&) {
     return false;

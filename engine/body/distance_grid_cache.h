@@ -10,6 +10,7 @@
 #include <string>
 
 #include "engine/body/body_mesh.h"
+#include "engine/body/body_surface.h"
 #include "engine/body/distance_grid.h"
 
 namespace garment {
@@ -20,13 +21,20 @@ std::uint64_t distance_grid_cache_key(const BodyMesh& body, double spacing, doub
 // "sdf-<16 hex digits>.bin"
 std::string distance_grid_cache_name(std::uint64_t key);
 
-// The grid stored in `file` under `key`, or nothing when the file is absent, truncated, of
-// another key or version, or fails its checksum.
-std::optional<DistanceGrid> read_distance_grid_cache(const std::filesystem::path& file,
-                                                     std::uint64_t key);
+// A cached field: the samples (grid.surface is left null) and the cells' triangle lists from
+// which the caller rebuilds the surface with the mesh.
+struct CachedDistanceGrid {
+  DistanceGrid grid;
+  CellTriangleLists lists;
+};
+
+// The field stored in `file` under `key`, or nothing when the file is absent, truncated, of
+// another key or version, inconsistent, or fails its checksum.
+std::optional<CachedDistanceGrid> read_distance_grid_cache(const std::filesystem::path& file,
+                                                           std::uint64_t key);
 
 // Writes atomically (creating the folder); false when the cache cannot be written.
 bool write_distance_grid_cache(const std::filesystem::path& file, std::uint64_t key,
-                               const DistanceGrid& grid);
+                               const DistanceGrid& grid, const CellTriangleLists& lists);
 
 }  // namespace garment

@@ -12,6 +12,13 @@
 // crossings along the grid rows: inside = winding ≥ 1, so where parts of a self-intersecting
 // body overlap (all four bundled/shared bodies press thighs, armpits or lips into themselves a
 // little) the overlap is inside, as the union of the parts.
+//
+// Interpolating the samples misses by up to half a spacing across the kinks of the distance
+// (thin gaps between thighs, between arm and torso, inside hands) and can give the wrong sign in
+// a gap narrower than the grid. The grid therefore carries its body's surface (body_surface.h):
+// the cells within a spacing of the surface, and the farther cells where the samples bend
+// sharply, answer with the exact signed distance of the closest feature (sign from its
+// angle-weighted pseudo-normal). bench_body and test_distance measure both against CGAL.
 
 #include <filesystem>
 
