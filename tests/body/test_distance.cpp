@@ -1,5 +1,6 @@
 // The body's signed distance field against the exact distance (CGAL AABB tree, signed by ray
-// crossings) on every body, and its disk cache.
+// crossings) on every body, the exact answers near the surface on shapes made to break
+// interpolation (a gap thinner than a cell, overlapping parts), and the disk cache.
 
 #include <QTemporaryDir>
 #include <QtTest>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "engine/body/body_mesh.h"
+#include "engine/body/body_surface.h"
 #include "engine/body/default_body.h"
 #include "engine/body/exact_body_distance.h"
 #include "engine/body/signed_distance_field.h"
@@ -21,12 +23,40 @@ using namespace garment;
 
 namespace {
 
+// The bundled body (mean_all) always; the three other shared bodies when ../shared is present.
 std::vector<std::filesystem::path> bodies() {
   std::vector<std::filesystem::path> paths = {default_body_path()};
   if (test::shared_data_available())
     for (const char* name : {"mean_all_apart", "f_smpl_average_A40", "m_smpl_average_A40"})
       paths.push_back(test::shared_data(std::string("bodies/") + name + ".obj"));
+  else
+    qInfo("shared data absent: the bundled body only");
   return paths;
+}
+
+// Axis-aligned boxes (lower, upper corners) as one closed mesh.
+BodyMesh boxes(const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& corners) {
+  BodyMesh mesh;
+  mesh.source = "boxes";
+  mesh.vertices.resize(8 * static_cast<Eigen::Index>(corners.size()), 3);
+  mesh.triangles.resize(12 * static_cast<Eigen::Index>(corners.size()), 3);
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (std::size_t b = 0; b < corners.size(); ++b) {
+    const auto& [low, high] = corners[b];
+    const int base = 8 * static_cast<int>(b);
+    for (int v = 0; v < 8; ++v)
+      mesh.vertices.row(base + v) = Eigen::Vector3d(
+          v & 1 ? high.x() : low.x(), v & 2 ? high.y() : low.y(), v & 4 ? high.z() : low.z());
+    for (int f = 0; f < 6; ++f) {
+      const int* q = faces[f];
+      const int row = 12 * static_cast<int>(b) + 2 * f;
+      mesh.triangles.row(row) = Eigen::Vector3i(base + q[0], base + q[1], base + q[2]);
+      mesh.triangles.row(row + 1) = Eigen::Vector3i(base + q[0], base + q[2], base + q[3]);
+    }
+  }
+  validate_and_orient_body(mesh);
+  return mesh;
 }
 
 }  // namespace
@@ -35,57 +65,100 @@ class BodyDistanceTest : public QObject {
   Q_OBJECT
 
  private slots:
-  // 10,000 uniform points of the body's box grown by 5 cm, kept within 5 cm of the surface.
-  // Trilinear interpolation cannot follow the kinks of the distance on medial surfaces (between
-  // the legs, between arm and torso, inside hands and fingers): there the error reaches up to
-  // half a spacing whatever the method, so the bound is on the 99th percentile, with the maximum
-  // held to half a spacing (measured at 6 mm on mean_all: p99 0.52 mm, max 2.0 mm, 0.3 % > 1 mm).
-  // For the same reason a point in a gap narrower than the grid (thighs 4 mm apart) can take the
-  // wrong sign up to half a spacing from the surface: none may beyond that, and at most 0.05 %
-  // beyond 2 mm (bench_body measures 0 or 1 in 10,000 on each body).
+  // Issue 3: at 10,000 uniform points of the body's box grown by 5 cm, kept within 5 cm of the
+  // surface, the field is within 1 mm of the exact signed distance and has the right sign
+  // wherever the exact distance exceeds 2 mm. Interpolation alone misses both (up to 2.9 mm, and
+  // a wrong sign in the 4 mm gap between f_smpl_average_A40's thighs): the cells near the surface
+  // and across kinks answer exactly (a third of these points), so both paths are measured here.
   void field_matches_exact_distance_near_the_surface() {
     const double spacing = SignedDistanceOptions().spacing;
     for (const std::filesystem::path& path : bodies()) {
       const BodyMesh body = load_body_obj(path);
       // A small margin keeps the test quick; it does not change values near the body.
       const DistanceGrid grid = compute_signed_distance_grid(body, spacing, 0.08);
+      QVERIFY(grid.surface);
       const ExactBodyDistance exact(body);
       std::mt19937_64 random(2024);
       const Eigen::Vector3d lower = body.lower_corner() - Eigen::Vector3d::Constant(0.05);
       const Eigen::Vector3d upper = body.upper_corner() + Eigen::Vector3d::Constant(0.05);
       std::uniform_real_distribution<double> unit(0.0, 1.0);
       std::vector<double> errors;
-      int inside = 0, wrong_sign = 0, wrong_sign_beyond_half_spacing = 0;
+      int inside = 0, wrong_sign = 0, answered_exactly = 0;
+      double worst_gradient = 1.0;
       while (errors.size() < 10000) {
         Eigen::Vector3d point;
         for (int axis = 0; axis < 3; ++axis)
           point[axis] = lower[axis] + unit(random) * (upper[axis] - lower[axis]);
         if (exact.unsigned_distance(point) > 0.05) continue;
         const double reference = exact.signed_distance(point);
-        const double value = grid.value(point);
+        Eigen::Vector3d gradient;
+        const double value = grid.value_and_gradient(point, gradient);
+        QCOMPARE(grid.value(point), value);
         errors.push_back(std::abs(value - reference));
         if (reference < 0.0) ++inside;
-        if ((value < 0.0) != (reference < 0.0)) {
-          if (std::abs(reference) > 0.002) ++wrong_sign;
-          if (std::abs(reference) > 0.5 * spacing) ++wrong_sign_beyond_half_spacing;
+        if (std::abs(reference) > 0.002 && (value < 0.0) != (reference < 0.0)) ++wrong_sign;
+        if (grid.surface->covers(point)) {
+          ++answered_exactly;
+          worst_gradient = std::min(worst_gradient, gradient.norm());
         }
       }
       std::sort(errors.begin(), errors.end());
       const double p99 = errors[9900], worst = errors.back();
-      const QString what =
-          QString("%1: p99 %2 mm, max %3 mm, %4 inside, %5 wrong signs beyond 2 mm")
-              .arg(QString::fromStdString(path.filename().string()))
-              .arg(1000 * p99)
-              .arg(1000 * worst)
-              .arg(inside)
-              .arg(wrong_sign);
+      const QString what = QString(
+                               "%1: p99 %2 mm, max %3 mm, %4 inside, %5 wrong signs beyond 2 mm, "
+                               "%6 answered exactly")
+                               .arg(QString::fromStdString(path.filename().string()))
+                               .arg(1000 * p99)
+                               .arg(1000 * worst)
+                               .arg(inside)
+                               .arg(wrong_sign)
+                               .arg(answered_exactly);
       qInfo().noquote() << what;
-      QVERIFY2(p99 <= 0.001, qPrintable(what));
-      QVERIFY2(worst <= 0.5 * spacing, qPrintable(what));
-      QVERIFY2(wrong_sign <= 5, qPrintable(what));
-      QVERIFY2(wrong_sign_beyond_half_spacing == 0, qPrintable(what));
-      QVERIFY2(inside > 1000, qPrintable(what));  // both sides were sampled
+      QVERIFY2(worst <= 0.001, qPrintable(what));
+      QVERIFY2(wrong_sign == 0, qPrintable(what));
+      QVERIFY2(inside > 1000, qPrintable(what));                          // both sides were sampled
+      QVERIFY2(answered_exactly > 1000, qPrintable(what));                // and both paths
+      QVERIFY2(std::abs(worst_gradient - 1.0) < 1e-9, qPrintable(what));  // exact: unit length
     }
+  }
+
+  // A gap of 3 mm between two boxes (half a cell: every sample around it is inside a box) and two
+  // boxes overlapping by 2 cm (the faces inside the other box are inside the union): on lines
+  // across both, the field equals the exact signed distance, sign included.
+  void thin_gaps_and_overlaps_are_exact() {
+    const BodyMesh body = boxes({{{0.0, 0.0, 0.0}, {0.1, 0.3, 0.1}},
+                                 {{0.103, 0.0, 0.0}, {0.203, 0.3, 0.1}},
+                                 {{0.4, 0.0, 0.0}, {0.5, 0.3, 0.1}},
+                                 {{0.48, 0.0, 0.0}, {0.58, 0.3, 0.1}}});
+    const DistanceGrid grid = compute_signed_distance_grid(body, 0.006, 0.05);
+    const ExactBodyDistance exact(body);
+    int gap_points = 0, overlap_points = 0;
+    for (int step = 0; step < 1240; ++step) {
+      const double x = -0.02 + 0.0005 * step + 0.00013;  // never on a face
+      const Eigen::Vector3d point(x, 0.1537, 0.0512);
+      const double reference = exact.signed_distance(point);
+      const double value = grid.value(point);
+      const bool covered = grid.surface->covers(point);
+      const QString what = QString("x = %1: %2 vs exact %3").arg(x).arg(value).arg(reference);
+      QVERIFY2(covered || std::abs(reference) > 0.006, qPrintable(what));
+      // Exact where covered; within the issue's 1 mm elsewhere up to 5 cm.
+      if (covered || std::abs(reference) <= 0.05)
+        QVERIFY2(std::abs(value - reference) < (covered ? 1e-6 : 1e-3), qPrintable(what));
+      if (x > 0.1 && x < 0.103) {
+        ++gap_points;
+        QVERIFY2(value > 0.0, qPrintable(what));
+      }
+      if (x > 0.5 && x < 0.51) {  // outside the first box of the pair, inside the second
+        ++overlap_points;
+        QVERIFY2(value < 0.0, qPrintable(what));
+      }
+    }
+    QCOMPARE(gap_points, 6);
+    QVERIFY(overlap_points >= 19);
+    // Interpolation alone takes the gap for inside: the exact answer is what fixes it.
+    Eigen::Vector3d gradient;
+    QVERIFY(grid.interpolated_value_and_gradient(Eigen::Vector3d(0.1015, 0.1537, 0.0512),
+                                                 gradient) < 0.0);
   }
 
   // Away from the body the field stays exact enough to steer by: its gradient follows the exact
@@ -158,6 +231,17 @@ class BodyDistanceTest : public QObject {
     QVERIFY(cached.grid.values == built.grid.values);
     QVERIFY(cached.grid.origin == built.grid.origin);
     QCOMPARE(cached.grid.size, built.grid.size);
+    // The exact cells come back from the file too: the same answers near the surface.
+    QVERIFY(cached.grid.surface && built.grid.surface);
+    QCOMPARE(cached.grid.surface->lists().entries.size(),
+             built.grid.surface->lists().entries.size());
+    const Eigen::Vector3d near_chest =
+        0.5 * (body.lower_corner() + body.upper_corner()) + Eigen::Vector3d(0.0, 0.2, 0.0);
+    for (double z = -0.3; z <= 0.3; z += 0.0037) {
+      const Eigen::Vector3d point = near_chest + Eigen::Vector3d(0.0, 0.0, z);
+      QCOMPARE(cached.grid.value(point), built.grid.value(point));
+      QCOMPARE(cached.grid.surface->covers(point), built.grid.surface->covers(point));
+    }
 
     // Another spacing is another file.
     SignedDistanceOptions finer = options;
