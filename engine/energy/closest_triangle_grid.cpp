@@ -1,5 +1,6 @@
 #include "engine/energy/closest_triangle_grid.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,13 +15,15 @@ constexpr int kCoordinateBits = 21;
 constexpr int kCoordinateOffset = 1 << (kCoordinateBits - 1);
 constexpr long long kMaxCellsPerTriangle = 4096;
 
+// The slot is taken from the low bits, so every key bit must reach them (a plain multiply leaves
+// the low bits a function of the x field alone: all cells of one x column then collide).
 std::uint64_t mix(std::uint64_t key) {
-  return key * 0x9E3779B97F4A7C15ull;
+  key = (key ^ (key >> 30)) * 0xBF58476D1CE4E5B9ull;  // splitmix64's finaliser
+  key = (key ^ (key >> 27)) * 0x94D049BB133111EBull;
+  return key ^ (key >> 31);
 }
 
-}  // namespace
-
-std::uint64_t ClosestTriangleGrid::key(const Eigen::Vector3i& cell) const {
+std::uint64_t cell_key(const Eigen::Vector3i& cell) {
   const auto field = [](int c) {
     return static_cast<std::uint64_t>(c + kCoordinateOffset) & ((1ull << kCoordinateBits) - 1);
   };
@@ -28,29 +31,39 @@ std::uint64_t ClosestTriangleGrid::key(const Eigen::Vector3i& cell) const {
          field(cell.z()) << (2 * kCoordinateBits);
 }
 
-Eigen::Vector3i ClosestTriangleGrid::cell_of(const Eigen::Vector3d& p) const {
-  return (p / cell_size_).array().floor().cast<int>();
+float round_down(double v) {
+  const float f = static_cast<float>(v);
+  return static_cast<double>(f) > v ? std::nextafter(f, -std::numeric_limits<float>::infinity())
+                                    : f;
 }
 
-int ClosestTriangleGrid::find_slot(std::uint64_t cell_key) const {
-  const std::size_t mask = slot_keys_.size() - 1;
-  for (std::size_t slot = mix(cell_key) & mask;; slot = (slot + 1) & mask) {
-    if (slot_keys_[slot] == cell_key) return static_cast<int>(slot);
-    if (slot_keys_[slot] == kEmpty) return -1;
+float round_up(double v) {
+  const float f = static_cast<float>(v);
+  return static_cast<double>(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+}  // namespace
+
+Eigen::Vector3i ClosestTriangleGrid::Level::cell_of(const Eigen::Vector3d& p) const {
+  return (p / cell_size).array().floor().cast<int>();
+}
+
+int ClosestTriangleGrid::Level::find_slot(std::uint64_t key) const {
+  const std::size_t mask = slot_keys.size() - 1;
+  for (std::size_t slot = mix(key) & mask;; slot = (slot + 1) & mask) {
+    if (slot_keys[slot] == key) return static_cast<int>(slot);
+    if (slot_keys[slot] == kEmpty) return -1;
   }
 }
 
 void ClosestTriangleGrid::build(const Positions& x, const Eigen::MatrixX3i& triangles,
-                                const std::vector<int>& triangle_ids, double cell_size) {
+                                const std::vector<int>& triangle_ids, double cell_size,
+                                double fine_cell_size) {
   triangles_ = &triangles;
-  cell_size_ = cell_size;
   ids_ = triangle_ids;
   const std::size_t count = ids_.size();
   lower_.resize(count);
   upper_.resize(count);
-  oversized_.clear();
-  std::vector<std::pair<std::uint64_t, int>> entries;
-  entries.reserve(count * 4);
   for (std::size_t i = 0; i < count; ++i) {
     const int t = ids_[i];
     const Eigen::Vector3d a = x.row(triangles(t, 0)).transpose();
@@ -58,42 +71,80 @@ void ClosestTriangleGrid::build(const Positions& x, const Eigen::MatrixX3i& tria
     const Eigen::Vector3d c = x.row(triangles(t, 2)).transpose();
     lower_[i] = a.cwiseMin(b).cwiseMin(c);
     upper_[i] = a.cwiseMax(b).cwiseMax(c);
+  }
+  build_level(levels_[0], x, cell_size);
+  has_fine_ = fine_cell_size > 0.0 && fine_cell_size < cell_size;
+  if (has_fine_) build_level(levels_[1], x, fine_cell_size);
+}
+
+void ClosestTriangleGrid::build_level(Level& level, const Positions& x, double cell_size) {
+  const Eigen::MatrixX3i& triangles = *triangles_;
+  level.cell_size = cell_size;
+  level.oversized.clear();
+  auto& entries = level.entries;
+  entries.clear();
+  for (std::size_t i = 0; i < ids_.size(); ++i) {
     // A triangle with a coordinate that is not finite cannot be the closest one: left out.
     if (!(lower_[i].allFinite() && upper_[i].allFinite())) continue;
-    const Eigen::Vector3d extent = (upper_[i] - lower_[i]) / cell_size_ + Eigen::Vector3d::Ones();
+    const Eigen::Vector3d extent = (upper_[i] - lower_[i]) / cell_size + Eigen::Vector3d::Ones();
     if (!(extent.prod() <= static_cast<double>(kMaxCellsPerTriangle) &&
-          (lower_[i].cwiseAbs().array() / cell_size_ < kCoordinateOffset / 2).all() &&
-          (upper_[i].cwiseAbs().array() / cell_size_ < kCoordinateOffset / 2).all())) {
-      oversized_.push_back(static_cast<int>(i));
+          (lower_[i].cwiseAbs().array() / cell_size < kCoordinateOffset / 2).all() &&
+          (upper_[i].cwiseAbs().array() / cell_size < kCoordinateOffset / 2).all())) {
+      level.oversized.push_back(static_cast<int>(i));
       continue;
     }
-    const Eigen::Vector3i from = cell_of(lower_[i]), to = cell_of(upper_[i]);
+    // Listed in the cells of its bounding box that its plane crosses (the plane–box overlap test
+    // of Akenine-Möller's triangle–box test): a long triangle lying diagonally through space
+    // (cloth stretched across a seam) would otherwise fill every cell of a large box.
+    const int t = ids_[i];
+    const Eigen::Vector3d a = x.row(triangles(t, 0)).transpose();
+    const Eigen::Vector3d normal =
+        (x.row(triangles(t, 1)).transpose() - a).cross(x.row(triangles(t, 2)).transpose() - a);
+    // Half the box's extent along n, with a margin for rounding at cell boundaries.
+    const double reach = (0.5 + 1e-9) * cell_size * normal.cwiseAbs().sum();
+    const Eigen::Vector3i from = level.cell_of(lower_[i]), to = level.cell_of(upper_[i]);
     for (int cz = from.z(); cz <= to.z(); ++cz)
       for (int cy = from.y(); cy <= to.y(); ++cy)
-        for (int cx = from.x(); cx <= to.x(); ++cx)
-          entries.emplace_back(key({cx, cy, cz}), static_cast<int>(i));
+        for (int cx = from.x(); cx <= to.x(); ++cx) {
+          const Eigen::Vector3d centre = (Eigen::Vector3d(cx, cy, cz).array() + 0.5) * cell_size;
+          if (std::abs(normal.dot(centre - a)) > reach) continue;
+          entries.emplace_back(cell_key({cx, cy, cz}), static_cast<int>(i));
+        }
   }
   std::size_t capacity = 16;
   while (capacity < 2 * entries.size())
     capacity *= 2;
-  slot_keys_.assign(capacity, kEmpty);
-  std::vector<int> start(capacity + 1, 0);
-  std::vector<int> entry_slot(entries.size());
+  level.slot_keys.assign(capacity, kEmpty);
+  std::vector<int>& start = level.slot_start;
+  start.assign(capacity + 1, 0);
+  level.entry_slot.resize(entries.size());
   const std::size_t mask = capacity - 1;
   for (std::size_t e = 0; e < entries.size(); ++e) {
     std::size_t slot = mix(entries[e].first) & mask;
-    while (slot_keys_[slot] != kEmpty && slot_keys_[slot] != entries[e].first)
+    while (level.slot_keys[slot] != kEmpty && level.slot_keys[slot] != entries[e].first)
       slot = (slot + 1) & mask;
-    slot_keys_[slot] = entries[e].first;
-    entry_slot[e] = static_cast<int>(slot);
+    level.slot_keys[slot] = entries[e].first;
+    level.entry_slot[e] = static_cast<int>(slot);
     ++start[slot + 1];
   }
   for (std::size_t s = 0; s < capacity; ++s)
     start[s + 1] += start[s];
-  slot_start_ = start;
-  items_.resize(entries.size());
-  for (std::size_t e = 0; e < entries.size(); ++e)
-    items_[start[entry_slot[e]]++] = entries[e].second;
+  // Every cell's items in one contiguous run, each with its triangle's box, so that a query
+  // scans them without touching the triangle arrays. The fill advances start[s] to the end of
+  // cell s's run, which is where cell s + 1's run begins: shifted back afterwards.
+  level.items.resize(entries.size());
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    const int i = entries[e].second;
+    Item& item = level.items[start[level.entry_slot[e]]++];
+    for (int k = 0; k < 3; ++k) {
+      item.lower[k] = round_down(lower_[i][k]);
+      item.upper[k] = round_up(upper_[i][k]);
+    }
+    item.triangle = ids_[i];
+  }
+  for (std::size_t s = capacity; s > 0; --s)
+    start[s] = start[s - 1];
+  start[0] = 0;
 }
 
 ClosestTriangleGrid::Hit ClosestTriangleGrid::closest(const Positions& x, const Eigen::Vector3d& p,
@@ -102,8 +153,12 @@ ClosestTriangleGrid::Hit ClosestTriangleGrid::closest(const Positions& x, const 
   Hit best;
   if (ids_.empty() || !p.allFinite()) return best;
   const Eigen::MatrixX3i& triangles = *triangles_;
+  // The answer is the least (squared distance, rank), rank −1 for the hint and the id for any
+  // other triangle, whatever order the cells are visited in. Nothing ties with the initial bound
+  // (rank −2): a triangle must lie strictly within the radius.
   double best_squared = radius * radius;
-  const auto consider = [&](int t) {
+  int best_rank = -2;
+  const auto consider = [&](int t, int rank) {
     const int i = triangles(t, 0), j = triangles(t, 1), k = triangles(t, 2);
     if (i == skip_vertex || j == skip_vertex || k == skip_vertex) return;
     const Eigen::Vector3d a = x.row(i).transpose(), b = x.row(j).transpose(),
@@ -111,49 +166,61 @@ ClosestTriangleGrid::Hit ClosestTriangleGrid::closest(const Positions& x, const 
     const Eigen::Vector3d weights = closest_point_weights(p, a, b, c);
     const double squared =
         (p - (weights.x() * a + weights.y() * b + weights.z() * c)).squaredNorm();
-    if (squared < best_squared) {
+    if (squared < best_squared ||
+        (squared == best_squared && best_rank != -2 && rank < best_rank)) {
       best_squared = squared;
+      best_rank = rank;
       best.triangle = t;
       best.weights = weights;
     }
   };
-  const auto consider_item = [&](int item) {
-    const Eigen::Vector3d outside = (lower_[item] - p).cwiseMax(p - upper_[item]).cwiseMax(0.0);
-    if (outside.squaredNorm() < best_squared) consider(ids_[item]);
+  const auto consider_box = [&](const Eigen::Vector3d& lower, const Eigen::Vector3d& upper, int t) {
+    const Eigen::Vector3d outside = (lower - p).cwiseMax(p - upper).cwiseMax(0.0);
+    if (outside.squaredNorm() > best_squared || t == hint) return;
+    consider(t, t);
   };
-  if (hint >= 0) consider(hint);
-  for (int item : oversized_)
-    consider_item(item);
-  if ((p.cwiseAbs().array() / cell_size_ >= kCoordinateOffset / 2).any()) {
+  if (hint >= 0) consider(hint, -1);
+  // The fine level when the hint's distance fits in one fine cell, else the coarse one.
+  const Level& level =
+      has_fine_ && best_rank == -1 && best_squared <= levels_[1].cell_size * levels_[1].cell_size
+          ? levels_[1]
+          : levels_[0];
+  const double h = level.cell_size;
+  for (int i : level.oversized)
+    consider_box(lower_[i], upper_[i], ids_[i]);
+  if ((p.cwiseAbs().array() / h >= kCoordinateOffset / 2).any()) {
     if (best.triangle >= 0) best.distance = std::sqrt(best_squared);
     return best;  // beyond the grid's keys: only the hint and the oversized triangles
   }
-  const Eigen::Vector3i centre = cell_of(p);
-  const int max_shell = static_cast<int>(std::ceil(radius / cell_size_));
+  const Eigen::Vector3i centre = level.cell_of(p);
+  const int max_shell = static_cast<int>(std::ceil(std::sqrt(best_squared) / h));
   for (int shell = 0; shell <= max_shell; ++shell) {
     for (int dz = -shell; dz <= shell; ++dz) {
       for (int dy = -shell; dy <= shell; ++dy) {
-        for (int dx = -shell; dx <= shell; ++dx) {
-          if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != shell) continue;
+        // On the shell's surface: every dx when dy or dz is at ±shell, else only dx = ±shell.
+        const bool face = std::abs(dz) == shell || std::abs(dy) == shell;
+        const int step = face || shell == 0 ? 1 : 2 * shell;
+        for (int dx = -shell; dx <= shell; dx += step) {
           const Eigen::Vector3i cell = centre + Eigen::Vector3i(dx, dy, dz);
-          const Eigen::Vector3d cell_lower = cell.cast<double>() * cell_size_;
+          const Eigen::Vector3d cell_lower = cell.cast<double>() * h;
           const Eigen::Vector3d outside =
-              (cell_lower - p)
-                  .cwiseMax(p - (cell_lower.array() + cell_size_).matrix())
-                  .cwiseMax(0.0);
-          if (outside.squaredNorm() >= best_squared) continue;  // the cell is too far
-          const int slot = find_slot(key(cell));
+              (cell_lower - p).cwiseMax(p - (cell_lower.array() + h).matrix()).cwiseMax(0.0);
+          if (outside.squaredNorm() > best_squared) continue;  // the cell is too far
+          const int slot = level.find_slot(cell_key(cell));
           if (slot < 0) continue;
-          for (int s = slot_start_[slot]; s < slot_start_[slot + 1]; ++s)
-            consider_item(items_[s]);
+          for (int s = level.slot_start[slot]; s < level.slot_start[slot + 1]; ++s) {
+            const Item& item = level.items[s];
+            consider_box(Eigen::Vector3f::Map(item.lower).cast<double>(),
+                         Eigen::Vector3f::Map(item.upper).cast<double>(), item.triangle);
+          }
         }
       }
     }
     // Everything not seen yet lies outside the visited block of cells.
-    const Eigen::Vector3d lower = (centre.array() - shell).cast<double>() * cell_size_;
-    const Eigen::Vector3d upper = (centre.array() + shell + 1).cast<double>() * cell_size_;
+    const Eigen::Vector3d lower = (centre.array() - shell).cast<double>() * h;
+    const Eigen::Vector3d upper = (centre.array() + shell + 1).cast<double>() * h;
     const double reach = (p - lower).cwiseMin(upper - p).minCoeff();
-    if (best_squared <= reach * reach) break;
+    if (best_squared < reach * reach) break;
   }
   if (best.triangle >= 0) best.distance = std::sqrt(best_squared);
   return best;

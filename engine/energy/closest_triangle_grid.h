@@ -18,9 +18,13 @@ namespace garment {
 
 class ClosestTriangleGrid {
  public:
-  // triangles: #T×3; triangle_ids: the ones to index; cell_size in m (> 0).
+  // triangles: #T×3; triangle_ids: the ones to index; cell_size in m (> 0). fine_cell_size
+  // (0: none, else > 0 and below cell_size) adds a second grid of small cells, searched instead
+  // when the hint already bounds the answer within one fine cell: where cloth lies in many layers
+  // a large cell holds thousands of triangles, while queries that find nothing nearby (the common
+  // case in a loose garment) want large cells.
   void build(const Positions& x, const Eigen::MatrixX3i& triangles,
-             const std::vector<int>& triangle_ids, double cell_size);
+             const std::vector<int>& triangle_ids, double cell_size, double fine_cell_size = 0.0);
 
   struct Hit {
     int triangle = -1;                                  // id into the #T×3 array, -1: none
@@ -28,28 +32,42 @@ class ClosestTriangleGrid {
     double distance = 0.0;
   };
   // The closest indexed triangle within `radius` of p, ignoring triangles that have
-  // `skip_vertex` as a corner. `hint`: a triangle id likely to be close (or -1). Thread-safe.
+  // `skip_vertex` as a corner. `hint`: a triangle id likely to be close (or -1); among equally
+  // close triangles the hint wins, then the smallest id, so the answer does not depend on the
+  // cell sizes. Thread-safe.
   Hit closest(const Positions& x, const Eigen::Vector3d& p, double radius, int skip_vertex,
               int hint = -1) const;
 
-  double cell_size() const { return cell_size_; }
+  double cell_size() const { return levels_[0].cell_size; }
 
  private:
-  std::uint64_t key(const Eigen::Vector3i& cell) const;
-  Eigen::Vector3i cell_of(const Eigen::Vector3d& p) const;
-  int find_slot(std::uint64_t key) const;  // -1 when the cell is empty
+  struct Item {
+    float lower[3], upper[3];  // the triangle's bounding box, rounded outwards
+    int triangle;              // id into the #T×3 array
+  };
+  struct Level {
+    double cell_size = 1.0;
+    std::vector<std::uint64_t> slot_keys;  // open addressing, power-of-two size
+    std::vector<int> slot_start;           // items[slot_start[s] .. slot_start[s + 1])
+    std::vector<Item> items;               // per cell, contiguous
+    // Triangles too large for this level (a bounding box over kMaxCellsPerTriangle cells: a
+    // mesh torn apart), indices into ids_: checked by every query of the level.
+    std::vector<int> oversized;
+    // Scratch of build, kept to reuse its memory.
+    std::vector<std::pair<std::uint64_t, int>> entries;
+    std::vector<int> entry_slot;
+
+    Eigen::Vector3i cell_of(const Eigen::Vector3d& p) const;
+    int find_slot(std::uint64_t key) const;  // -1 when the cell is empty
+  };
+  void build_level(Level& level, const Positions& x, double cell_size);
 
   const Eigen::MatrixX3i* triangles_ = nullptr;
-  double cell_size_ = 1.0;
   std::vector<int> ids_;                // indexed triangles
   std::vector<Eigen::Vector3d> lower_;  // bounding box per indexed triangle
   std::vector<Eigen::Vector3d> upper_;
-  std::vector<std::uint64_t> slot_keys_;  // open addressing, power-of-two size
-  std::vector<int> slot_start_;           // items_[slot_start_[s] .. slot_start_[s + 1])
-  std::vector<int> items_;                // indices into ids_
-  // Triangles too large for the grid (a bounding box over kMaxCellsPerTriangle cells: a mesh
-  // torn apart): checked by every query.
-  std::vector<int> oversized_;
+  Level levels_[2];  // coarse, fine (empty when not built)
+  bool has_fine_ = false;
 };
 
 }  // namespace garment

@@ -16,11 +16,13 @@
 #include "engine/energy/bending_potential.h"
 #include "engine/energy/body_distance_potential.h"
 #include "engine/energy/body_repulsion_potential.h"
+#include "engine/energy/closest_triangle_grid.h"
 #include "engine/energy/gravity_potential.h"
 #include "engine/energy/objective.h"
 #include "engine/energy/self_repulsion_potential.h"
 #include "engine/energy/sewing_potential.h"
 #include "engine/energy/stretch_potential.h"
+#include "engine/energy/triangle_closest_point.h"
 #include "support/test_paths.h"
 
 using namespace garment;
@@ -201,6 +203,78 @@ class PotentialsTest : public QObject {
     QVERIFY(std::abs(energy - repelled.size() * 0.5 * 1000.0 * 0.006 * 0.006) < 1e-9);
     for (int v : repelled)
       QVERIFY(gradient(v, 2) < 0.0 && std::abs(gradient(v, 0)) < 1e-9);
+  }
+
+  // The grid's answer is the brute-force one: the least (distance, rank), the hint ranking first
+  // among equally close triangles, then the smallest id; whatever the cell sizes, with or
+  // without the fine level. Pieces stacked 1 mm apart with noise make many near ties and dense
+  // cells; queries are the vertices themselves (exact ties at shared corners) and random points.
+  void closestTriangleGridMatchesBruteForce() {
+    const Garment garment = load("patterns/gc_0000_specification.json", 0.03);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> noise(-5e-4, 5e-4);
+    Positions x(garment.vertex_count(), 3);
+    for (int v = 0; v < garment.vertex_count(); ++v)
+      x.row(v) << garment.rest_positions(v, 0) + noise(random),
+          garment.rest_positions(v, 1) + noise(random), 1e-3 * garment.vertex_piece[v];
+    std::vector<int> ids;
+    for (int t = 0; t < garment.triangle_count(); t += 2)
+      ids.push_back(t);
+    std::vector<Eigen::Vector3d> points;
+    std::vector<int> skips;
+    for (int v = 0; v < garment.vertex_count(); ++v) {
+      points.push_back(x.row(v).transpose());
+      skips.push_back(v % 3 == 0 ? v : -1);
+    }
+    const Eigen::Vector3d lower = x.colwise().minCoeff(), upper = x.colwise().maxCoeff();
+    std::uniform_real_distribution<double> unit(-0.1, 1.1);
+    for (int q = 0; q < 2000; ++q) {
+      points.push_back(
+          lower +
+          (upper - lower).cwiseProduct(Eigen::Vector3d(unit(random), unit(random), unit(random))));
+      skips.push_back(-1);
+    }
+    const double radius = 0.02;
+    const auto brute = [&](const Eigen::Vector3d& p, int skip, int hint) {
+      double best = radius * radius;
+      int best_rank = -2, best_triangle = -1;
+      for (int t : ids) {
+        const int i = garment.triangles(t, 0), j = garment.triangles(t, 1),
+                  k = garment.triangles(t, 2);
+        if (i == skip || j == skip || k == skip) continue;
+        const Eigen::Vector3d a = x.row(i).transpose(), b = x.row(j).transpose(),
+                              c = x.row(k).transpose();
+        const Eigen::Vector3d w = closest_point_weights(p, a, b, c);
+        const double squared = (p - (w.x() * a + w.y() * b + w.z() * c)).squaredNorm();
+        const int rank = t == hint ? -1 : t;
+        if (squared < best || (squared == best && best_rank != -2 && rank < best_rank)) {
+          best = squared;
+          best_rank = rank;
+          best_triangle = t;
+        }
+      }
+      return std::make_pair(best_triangle, best);
+    };
+    int found = 0;
+    for (const auto& [cell, fine] : {std::pair{0.06, 0.0}, {0.06, 0.015}, {0.012, 0.004}}) {
+      ClosestTriangleGrid grid;
+      grid.build(x, garment.triangles, ids, cell, fine);
+      for (std::size_t q = 0; q < points.size(); ++q) {
+        const auto [expected, squared] = brute(points[q], skips[q], -1);
+        const ClosestTriangleGrid::Hit cold = grid.closest(x, points[q], radius, skips[q]);
+        QCOMPARE(cold.triangle, expected);
+        if (expected < 0) continue;
+        ++found;
+        QCOMPARE(cold.distance, std::sqrt(squared));
+        // Hinted with a triangle that ties (or not): the brute force with the same hint.
+        const int hint = ids[(q * 7) % ids.size()];
+        for (int h : {expected, hint}) {
+          const auto [with_hint, unused] = brute(points[q], skips[q], h);
+          QCOMPARE(grid.closest(x, points[q], radius, skips[q], h).triangle, with_hint);
+        }
+      }
+    }
+    QVERIFY(found > 1000);
   }
 
   void assembledEnergyIsTheSumAndThreadIndependent() {
