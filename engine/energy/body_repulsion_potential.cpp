@@ -32,7 +32,7 @@ double BodyRepulsionPotential::accumulate(const Positions& x, int begin, int end
     const int v = active_[e];
     // Eq. 11: ½ k min(φ − ε, 0)²
     const double depth =
-        body.value_and_gradient(x.row(v).transpose(), grad_phi, cells_[e]) - buffer_;
+        body.value_and_gradient_below(x.row(v).transpose(), buffer_, grad_phi, cells_[e]) - buffer_;
     if (depth >= 0.0) continue;
     energy += 0.5 * k * depth * depth;
     out.gradient_row(v) += (k * depth) * grad_phi;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 
 #include "engine/body/distance_grid.h"
 
@@ -32,6 +33,20 @@ class DistanceGridSampler {
 
   double value_and_gradient(const Eigen::Vector3d& point, Eigen::Vector3d& gradient,
                             CellCache& cache) const {
+    return sample(point, std::numeric_limits<double>::infinity(), gradient, cache);
+  }
+
+  // The value, and the gradient only when the value is below `threshold` (else `gradient` is
+  // left unspecified): a repulsion needs the gradient of the few vertices inside its buffer.
+  // Same formulas as value_and_gradient, so the same numbers.
+  double value_and_gradient_below(const Eigen::Vector3d& point, double threshold,
+                                  Eigen::Vector3d& gradient, CellCache& cache) const {
+    return sample(point, threshold, gradient, cache);
+  }
+
+ private:
+  double sample(const Eigen::Vector3d& point, double threshold, Eigen::Vector3d& gradient,
+                CellCache& cache) const {
     const Eigen::Vector3d local = (point - grid_->origin) * inverse_spacing_;
     // Inside the cells that have a +1 neighbour; truncation is then the floor (x86-64 has no
     // SSE2 floor instruction: std::floor would be a library call per axis).
@@ -56,15 +71,16 @@ class DistanceGridSampler {
     const double c00 = c000 + x * (c100 - c000), c10 = c010 + x * (c110 - c010);
     const double c01 = c001 + x * (c101 - c001), c11 = c011 + x * (c111 - c011);
     const double c0 = c00 + y * (c10 - c00), c1 = c01 + y * (c11 - c01);
+    const double value = c0 + z * (c1 - c0);
+    if (value >= threshold) return value;
     gradient.x() = ((1 - y) * (1 - z) * (c100 - c000) + y * (1 - z) * (c110 - c010) +
                     (1 - y) * z * (c101 - c001) + y * z * (c111 - c011)) *
                    inverse_spacing_;
     gradient.y() = ((1 - z) * (c10 - c00) + z * (c11 - c01)) * inverse_spacing_;
     gradient.z() = (c1 - c0) * inverse_spacing_;
-    return c0 + z * (c1 - c0);
+    return value;
   }
 
- private:
   const DistanceGrid* grid_;
   double inverse_spacing_;
   Eigen::Vector3d cell_end_;  // size − 1 per axis: cells below it have a +1 neighbour

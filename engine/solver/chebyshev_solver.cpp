@@ -165,12 +165,14 @@ SolveReport solve(Objective& objective, Eigen::MatrixX3d& positions, const Solve
     const double omega = chebyshev.next();
     const double squared_norm =
         assembler.gather(x, [&](int v, const Eigen::Vector3d& g, const Eigen::Vector3d& d) {
-          Eigen::Vector3d step;
-          for (int c = 0; c < 3; ++c)
-            step[c] = d[c] > 0.0 ? -alpha * g[c] / d[c] : 0.0;
-          const Eigen::Vector3d current = x.row(v).transpose();
-          const Eigen::Vector3d before = previous.row(v).transpose();
-          previous.row(v) = (omega * (current + step - before) + before).transpose();
+          // Component by component, in place: a step vector written per component and read back
+          // as a packet stalled on store forwarding (perf, 2k domain).
+          const double* current = x.data() + 3 * static_cast<std::ptrdiff_t>(v);
+          double* before = previous.data() + 3 * static_cast<std::ptrdiff_t>(v);
+          for (int c = 0; c < 3; ++c) {
+            const double step = d[c] > 0.0 ? -alpha * g[c] / d[c] : 0.0;
+            before[c] = omega * (current[c] + step - before[c]) + before[c];
+          }
           return g.squaredNorm();
         });
     x.swap(previous);
