@@ -92,15 +92,23 @@ const Command kCommands[] = {
      "simulator starts from, the reference to compare with. OBJ as exported (one group per\n"
      "panel, vt = pattern coordinates, metres).",
      garment::cli::flat_command},
-    {"seed", "seed PATTERN.json [--json] [--weights FILE]",
-     "Classifies the pattern's pieces for seeding (paper §5.1): strips sewn side to side are "
-     "merged\n"
-     "into one seed piece (waist merge), then graph attention networks over the sewing graph\n"
-     "(an ensemble of 3, probabilities averaged) give each piece a class (neck, waist,\n"
+    {"seed",
+     "seed PATTERN.json [--body BODY.obj] [--json] [-o SEED.obj] [--seed-pieces a,b "
+     "--seed-location NAME] [--weights FILE] [--edge-length M] [--parameters P.json]",
+     "Classifies the pattern's pieces for seeding (paper §5.1): strips sewn side to side are\n"
+     "merged into one seed piece (waist merge), then graph attention networks over the sewing\n"
+     "graph (an ensemble of 3, probabilities averaged) give each piece a class (neck, waist,\n"
      "front_chest, back_chest, front_pelvis, back_pelvis, other) and its probabilities. Panel\n"
-     "names are not used. --json prints\n"
-     "{pieces:[{name, class, probabilities:{class: p}}], waist_merge:[[names]]}. --weights\n"
-     "defaults to resources/classifier/gat_weights.json.",
+     "names are not used. Then chooses the seed (§5): the neck or waist piece, else the front and\n"
+     "back chest pieces, else the pelvis pieces, else the piece with the most garment below it;\n"
+     "--seed-pieces with --seed-location (one of the 15 body locations, see `body`) overrides\n"
+     "it. -o shapes the seed on the body (default: the bundled mean body) as the arrangement\n"
+     "does (§5.2, the seed solve of `run`) and writes only the seed pieces as a garment OBJ (one\n"
+     "group per seed panel, vt = pattern coordinates). --json prints\n"
+     "{pieces:[{name, class, probabilities:{class: p}}], waist_merge:[[names]],\n"
+     "seed:{pieces:[names], location, parts:[{pieces, location}], manual, reason}}; location\n"
+     "joins the parts' locations with '+' (chest_front+chest_back). --weights defaults to\n"
+     "resources/classifier/gat_weights.json.",
      garment::cli::seed_command},
     {"train-classifier",
      "train-classifier DATA_DIR -o WEIGHTS.json [--regions FILE] [--epochs N] [--ensemble N] "

@@ -152,32 +152,51 @@ void append_line(std::string& out, const char* format, double a, double b, doubl
 }  // namespace
 
 std::string format_garment_obj(const Garment& garment, const Eigen::MatrixX3d& positions) {
+  std::vector<int> all(garment.pieces.size());
+  std::iota(all.begin(), all.end(), 0);
+  return format_garment_obj(garment, positions, all);
+}
+
+std::string format_garment_obj(const Garment& garment, const Eigen::MatrixX3d& positions,
+                               const std::vector<int>& pieces) {
   if (positions.rows() != garment.vertex_count())
     throw std::invalid_argument("format_garment_obj: positions must have one row per vertex");
+  int vertex_count = 0, triangle_count = 0;
+  for (int p : pieces) {
+    if (p < 0 || p >= static_cast<int>(garment.pieces.size()))
+      throw std::invalid_argument("format_garment_obj: piece index out of range");
+    vertex_count += garment.pieces[p].vertex_count;
+    triangle_count += garment.pieces[p].triangle_count;
+  }
   std::string out;
-  out.reserve(static_cast<std::size_t>(garment.vertex_count()) * 90);
+  out.reserve(static_cast<std::size_t>(vertex_count) * 90);
   out += "# garment-studio garment from " + garment.pattern.source + "\n";
   char units[32];
   std::snprintf(units, sizeof units, "%g", garment.pattern.units_in_meter);
   out += "# v: metres, y up, body facing +z. vt: the pattern file's panel coordinates (" +
          std::string(units) + " units per metre).\n";
-  out += "# " + std::to_string(garment.pieces.size());
-  out += " pieces, not welded; " + std::to_string(garment.vertex_count()) + " vertices, " +
-         std::to_string(garment.triangle_count()) + " triangles\n";
-  for (const Piece& piece : garment.pieces) {
+  out += "# " + std::to_string(pieces.size());
+  if (pieces.size() != garment.pieces.size()) out += " of " + std::to_string(garment.pieces.size());
+  out += " pieces, not welded; " + std::to_string(vertex_count) + " vertices, " +
+         std::to_string(triangle_count) + " triangles\n";
+  int written = 0;  // vertices of the pieces before this one in the file
+  for (int p : pieces) {
+    const Piece& piece = garment.pieces[p];
     out += "g " + piece.name + "\n";
     for (int v = piece.first_vertex; v < piece.first_vertex + piece.vertex_count; ++v)
       append_line(out, "v %.9g %.9g %.9g\n", positions(v, 0), positions(v, 1), positions(v, 2));
     for (int v = piece.first_vertex; v < piece.first_vertex + piece.vertex_count; ++v)
       append_line(out, "vt %.9g %.9g\n", garment.pattern_positions(v, 0),
                   garment.pattern_positions(v, 1));
+    const int shift = written - piece.first_vertex + 1;  // global id → 1-based file index
     for (int t = piece.first_triangle; t < piece.first_triangle + piece.triangle_count; ++t) {
-      const int a = garment.triangles(t, 0) + 1, b = garment.triangles(t, 1) + 1,
-                c = garment.triangles(t, 2) + 1;
+      const int a = garment.triangles(t, 0) + shift, b = garment.triangles(t, 1) + shift,
+                c = garment.triangles(t, 2) + shift;
       char face[96];
       out.append(face, static_cast<std::size_t>(std::snprintf(
                            face, sizeof face, "f %d/%d %d/%d %d/%d\n", a, a, b, b, c, c)));
     }
+    written += piece.vertex_count;
   }
   return out;
 }
@@ -185,6 +204,11 @@ std::string format_garment_obj(const Garment& garment, const Eigen::MatrixX3d& p
 void write_garment_obj(const std::filesystem::path& path, const Garment& garment,
                        const Eigen::MatrixX3d& positions) {
   write_file_atomically(path, format_garment_obj(garment, positions));
+}
+
+void write_garment_obj(const std::filesystem::path& path, const Garment& garment,
+                       const Eigen::MatrixX3d& positions, const std::vector<int>& pieces) {
+  write_file_atomically(path, format_garment_obj(garment, positions, pieces));
 }
 
 Eigen::MatrixX3d parse_garment_obj(const std::string& text, const std::string& source,

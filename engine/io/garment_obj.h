@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "engine/pattern/garment_mesh.h"
 
@@ -21,10 +22,16 @@ namespace garment {
 
 // positions: #V×3 metres.
 std::string format_garment_obj(const Garment& garment, const Eigen::MatrixX3d& positions);
+// Only `pieces` (indices into Garment::pieces), in that order: e.g. the shaped seed. Such a file
+// has groups for those panels only (read_garment_obj wants every panel).
+std::string format_garment_obj(const Garment& garment, const Eigen::MatrixX3d& positions,
+                               const std::vector<int>& pieces);
 
 // Written atomically: a failure leaves any previous file intact.
 void write_garment_obj(const std::filesystem::path& path, const Garment& garment,
                        const Eigen::MatrixX3d& positions);
+void write_garment_obj(const std::filesystem::path& path, const Garment& garment,
+                       const Eigen::MatrixX3d& positions, const std::vector<int>& pieces);
 
 // Returns #V×3 positions. Throws InputError naming `source` and the line or group when: a line is
 // malformed or a number is not finite; an index is out of range; a face corner has no vt; a face
