@@ -453,8 +453,13 @@ CellTriangleLists build_cell_triangle_lists(const BodyMesh& body, const Eigen::V
             }
             // The closest triangle to the centre lies within `reach`; the triangles that can be
             // closest to some point of the cell within that distance + 2 half diagonals.
-            const double reach = listed[l].radius;
-            const double radius = reach + 2.0 * half_diagonal;
+            // Any corner's closest triangle bounds d* too, usually tighter.
+            double reach = listed[l].radius;
+            for (const std::int32_t t : listed[l].corner_triangles)
+              if (t >= 0)
+                reach = std::min(reach,
+                                 std::sqrt(squared_distance_to_triangle(centre, a[t], b[t], c[t])));
+            const double radius = reach + 2.0 * half_diagonal + 1e-6;
             const Eigen::Vector3i low = bucket_of(centre - Eigen::Vector3d::Constant(radius));
             const Eigen::Vector3i high = bucket_of(centre + Eigen::Vector3d::Constant(radius));
             for (int k = low.z(); k <= high.z(); ++k)
