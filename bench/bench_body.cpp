@@ -1,6 +1,8 @@
 // Body benchmark: per body, the signed distance field's build time (uncached, then cached), its
-// query throughput (value + gradient), and its accuracy against the exact distance (CGAL) at
-// random points within 5 cm of the surface. `--sweep` repeats the build and accuracy over several
+// query throughput (value + gradient: the field as the arrangement sees it, the trilinear
+// interpolant alone, and the exact answers of the cells near the surface), and its accuracy
+// against the exact distance (CGAL) at random points within 5 cm of the surface, for the field
+// and for interpolation alone. `--sweep` repeats the build and accuracy over several
 // spacings (how the default spacing was chosen).
 //
 //   bench_body [--sweep] [--spacing M] [--margin M] [BODY.obj ...]
@@ -19,9 +21,12 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "engine/body/body_mesh.h"
+#include "engine/body/body_surface.h"
 #include "engine/body/exact_body_distance.h"
 #include "engine/body/signed_distance_field.h"
 
@@ -65,11 +70,14 @@ std::vector<Sample> near_surface_samples(const BodyMesh& body,
   return samples;
 }
 
-void report_accuracy(const garment::DistanceGrid& grid, const std::vector<Sample>& samples) {
+void report_accuracy(const garment::DistanceGrid& grid, const std::vector<Sample>& samples,
+                     bool interpolated) {
   std::vector<double> errors;
   int sign_errors = 0;
+  Eigen::Vector3d gradient;
   for (const Sample& sample : samples) {
-    const double value = grid.value(sample.point);
+    const double value = interpolated ? grid.interpolated_value_and_gradient(sample.point, gradient)
+                                      : grid.value(sample.point);
     errors.push_back(std::abs(value - sample.exact));
     if (std::abs(sample.exact) > 0.002 && (value < 0.0) != (sample.exact < 0.0)) ++sign_errors;
   }
@@ -81,27 +89,22 @@ void report_accuracy(const garment::DistanceGrid& grid, const std::vector<Sample
   const auto over_1mm =
       std::count_if(errors.begin(), errors.end(), [](double e) { return e > 0.001; });
   std::printf(
-      "    accuracy at %zu points within 5 cm: error mean %.3f mm, p99 %.3f mm, p99.9 %.3f mm, "
+      "    %s at %zu points within 5 cm: error mean %.3f mm, p99 %.3f mm, p99.9 %.3f mm, "
       "max %.3f mm, %ld over 1 mm (%.2f%%), sign errors beyond 2 mm: %d\n",
-      samples.size(), 1000.0 * std::accumulate(errors.begin(), errors.end(), 0.0) / errors.size(),
-      quantile(0.99), quantile(0.999), 1000.0 * errors.back(), static_cast<long>(over_1mm),
+      interpolated ? "interpolation alone" : "field (exact near the surface)", samples.size(),
+      1000.0 * std::accumulate(errors.begin(), errors.end(), 0.0) / errors.size(), quantile(0.99),
+      quantile(0.999), 1000.0 * errors.back(), static_cast<long>(over_1mm),
       100.0 * over_1mm / errors.size(), sign_errors);
 }
 
-void report_throughput(const BodyMesh& body, const garment::DistanceGrid& grid) {
-  std::mt19937_64 random(7);
-  const Eigen::Vector3d lower = body.lower_corner() - Eigen::Vector3d::Constant(0.1);
-  const Eigen::Vector3d upper = body.upper_corner() + Eigen::Vector3d::Constant(0.1);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<Eigen::Vector3d> points(1 << 20);
-  for (Eigen::Vector3d& point : points)
-    for (int axis = 0; axis < 3; ++axis)
-      point[axis] = lower[axis] + unit(random) * (upper[axis] - lower[axis]);
+// Million queries per second of `query` over `points`, on one thread and on all.
+template <typename Query>
+std::pair<double, double> throughput(const std::vector<Eigen::Vector3d>& points, Query query) {
   const auto query_all = [&](std::size_t begin, std::size_t end) {
     double sum = 0.0;
     Eigen::Vector3d gradient;
     for (std::size_t q = begin; q < end; ++q)
-      sum += grid.value_and_gradient(points[q], gradient) + gradient.x();
+      sum += query(points[q], gradient) + gradient.x();
     return sum;
   };
   auto start = Clock::now();
@@ -116,10 +119,61 @@ void report_throughput(const BodyMesh& body, const garment::DistanceGrid& grid) 
       std::plus<double>());
   const double parallel = seconds_since(start);
   (void)sink;
+  return {points.size() / serial / 1e6, points.size() / parallel / 1e6};
+}
+
+void report_throughput(const BodyMesh& body, const garment::DistanceGrid& grid,
+                       const std::vector<Sample>& samples) {
+  std::mt19937_64 random(7);
+  const Eigen::Vector3d lower = body.lower_corner() - Eigen::Vector3d::Constant(0.1);
+  const Eigen::Vector3d upper = body.upper_corner() + Eigen::Vector3d::Constant(0.1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Eigen::Vector3d> points(1 << 20);
+  for (Eigen::Vector3d& point : points)
+    for (int axis = 0; axis < 3; ++axis)
+      point[axis] = lower[axis] + unit(random) * (upper[axis] - lower[axis]);
+  const auto field = [&](const Eigen::Vector3d& p, Eigen::Vector3d& g) {
+    return grid.value_and_gradient(p, g);
+  };
+  const auto interpolated = [&](const Eigen::Vector3d& p, Eigen::Vector3d& g) {
+    return grid.interpolated_value_and_gradient(p, g);
+  };
+  const auto covered = [&](const std::vector<Eigen::Vector3d>& set) {
+    if (!grid.surface) return 0.0;
+    return 100.0 *
+           std::count_if(set.begin(), set.end(),
+                         [&](const Eigen::Vector3d& p) { return grid.surface->covers(p); }) /
+           set.size();
+  };
+  auto [one, all] = throughput(points, field);
   std::printf(
-      "    queries (value + gradient, random points in the box + 10 cm): %.1f M/s on one "
-      "thread, %.1f M/s on all threads\n",
-      points.size() / serial / 1e6, points.size() / parallel / 1e6);
+      "    queries (value + gradient), random points in the box + 10 cm (%.1f%% answered "
+      "exactly): field %.1f M/s on one thread, %.1f M/s on all threads;",
+      covered(points), one, all);
+  std::tie(one, all) = throughput(points, interpolated);
+  std::printf(" interpolation alone %.1f M/s, %.1f M/s\n", one, all);
+  // The points within 5 cm of the surface, and those of them in the exact cells.
+  std::vector<Eigen::Vector3d> near, exact;
+  for (const Sample& sample : samples) {
+    near.push_back(sample.point);
+    if (grid.surface && grid.surface->covers(sample.point)) exact.push_back(sample.point);
+  }
+  for (std::vector<Eigen::Vector3d>* set : {&near, &exact}) {
+    const std::size_t base = set->size();
+    if (base == 0) continue;
+    while (set->size() < points.size())
+      set->push_back((*set)[set->size() % base]);
+  }
+  std::tie(one, all) = throughput(near, field);
+  std::printf(
+      "    queries within 5 cm of the surface (%.1f%% answered exactly): field %.1f M/s on one "
+      "thread, %.1f M/s on all threads",
+      covered(near), one, all);
+  if (!exact.empty()) {
+    std::tie(one, all) = throughput(exact, field);
+    std::printf("; exact answers alone %.2f M/s, %.2f M/s", one, all);
+  }
+  std::printf("\n");
 }
 
 }  // namespace
@@ -181,8 +235,13 @@ int main(int argc, char** argv) {
           1000.0 * spacing, run.margin, grid.size.x(), grid.size.y(), grid.size.z(),
           grid.values.size() / 1e6, grid.values.size() * 4.0 / 1e6, built.build_seconds, built_cpu,
           cached.build_seconds, cached_cpu, cached.from_cache ? "read from cache" : "CACHE MISSED");
-      report_accuracy(grid, samples);
-      if (!sweep) report_throughput(body, grid);
+      report_accuracy(grid, samples, false);
+      report_accuracy(grid, samples, true);
+      if (grid.surface)
+        std::printf("    exact cells' triangle lists: %zu entries (%.0f MB)\n",
+                    grid.surface->lists().entries.size(),
+                    grid.surface->lists().entries.size() * 8.0 / 1e6);
+      if (!sweep) report_throughput(body, grid, samples);
     }
   }
   std::filesystem::remove_all(cache);
