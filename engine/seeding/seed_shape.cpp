@@ -40,12 +40,19 @@ struct PartLayout {
   std::vector<int> pieces;
   std::vector<Eigen::Vector2d> offsets;  // added to each piece's rest positions
   RestBox box;                           // of the laid-out part
+  // When the pieces sewn side to side close into a ring (a waistband in a front and a back): the
+  // ring's length in the layout, from the first piece's left seam around to the same seam.
+  double ring_length = 0.0;
 };
 
-// The side seam joining `from` to `to`, as the midpoints of the seam on each piece (rest frames),
-// when the seam is more vertical than horizontal; else nothing.
+// The side seam joining the right side of `from` to the left side of `to`, as the midpoints of
+// the seam on each piece (rest frames): a seam more vertical than horizontal, right of the centre
+// of `from` and left of the centre of `to`; else nothing. Two pieces may be sewn at both sides (a
+// waistband's front and back): each stitch is looked at.
 bool side_seam(const Garment& garment, int from, int to, Eigen::Vector2d& on_from,
                Eigen::Vector2d& on_to) {
+  const double from_centre = rest_box(garment, from).centre().x();
+  const double to_centre = rest_box(garment, to).centre().x();
   for (const StitchPairs& range : garment.stitches) {
     if (range.pair_count < 2) continue;
     const int a = garment.sewing_pairs(range.first_pair, 0),
@@ -64,8 +71,11 @@ bool side_seam(const Garment& garment, int from, int to, Eigen::Vector2d& on_fro
         garment.rest_positions.row(garment.sewing_pairs(last, 1 - column));
     const Eigen::Vector2d direction = from_end - from_start;
     if (std::abs(direction.y()) < std::abs(direction.x())) continue;
-    on_from = 0.5 * (from_start + from_end);
-    on_to = 0.5 * (to_start + to_end);
+    const Eigen::Vector2d from_middle = 0.5 * (from_start + from_end);
+    const Eigen::Vector2d to_middle = 0.5 * (to_start + to_end);
+    if (from_middle.x() <= from_centre || to_middle.x() >= to_centre) continue;
+    on_from = from_middle;
+    on_to = to_middle;
     return true;
   }
   return false;
@@ -76,14 +86,11 @@ PartLayout lay_out_part(const Garment& garment, const std::vector<int>& pieces) 
   std::map<int, int> right_of;  // piece → the piece sewn to its right end
   std::map<int, std::pair<Eigen::Vector2d, Eigen::Vector2d>> right_seam;
   for (int a : pieces) {
-    const RestBox box = rest_box(garment, a);
     for (int b : pieces) {
       Eigen::Vector2d on_a, on_b;
       if (a == b || right_of.count(a) || !side_seam(garment, a, b, on_a, on_b)) continue;
-      if (on_a.x() > box.centre().x() && on_b.x() < rest_box(garment, b).centre().x()) {
-        right_of[a] = b;
-        right_seam[a] = {on_a, on_b};
-      }
+      right_of[a] = b;
+      right_seam[a] = {on_a, on_b};
     }
   }
   std::vector<bool> has_left(garment.pieces.size(), false);
@@ -100,17 +107,23 @@ PartLayout lay_out_part(const Garment& garment, const std::vector<int>& pieces) 
   for (int start : starts) {
     if (laid[start]) continue;
     const RestBox box = rest_box(garment, start);
-    Eigen::Vector2d offset(next_free.x() - box.lower.x(), -box.centre().y());
+    const Eigen::Vector2d start_offset(next_free.x() - box.lower.x(), -box.centre().y());
+    Eigen::Vector2d offset = start_offset;
+    std::size_t chain_length = 0;
     for (int piece = start; piece >= 0 && !laid[piece];) {
       laid[piece] = true;
       layout.pieces.push_back(piece);
       layout.offsets.push_back(offset);
+      ++chain_length;
       next_free.x() = std::max(next_free.x(), offset.x() + rest_box(garment, piece).upper.x());
       const auto right = right_of.find(piece);
       if (right == right_of.end()) break;
       const auto& [on_piece, on_next] = right_seam[piece];
       offset = offset + on_piece - on_next;  // the seam midpoints coincide
       piece = right->second;
+      // Back at the start: the whole part is one closed ring.
+      if (piece == start && chain_length == pieces.size())
+        layout.ring_length = offset.x() - start_offset.x();
     }
   }
   layout.box = {Eigen::Vector2d::Constant(1e30), Eigen::Vector2d::Constant(-1e30)};
@@ -158,8 +171,16 @@ void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double dis
       front.normalize();
       const Eigen::Vector3d across = axis.cross(front);
       const double span = layout.box.size().x();
-      const double radius =
-          std::max(location->radius + distance, 1.02 * span / (2.0 * std::numbers::pi));
+      // A closed ring goes all the way round, so that every seam of it starts closed: when it is
+      // shorter than the cylinder (a waistband cut to the waist goes round the cylinder that
+      // encloses the waist's section), it starts stretched and tightens onto the body; left with
+      // a gap, the seam across the gap would pull the ring's ends through the body and twist it.
+      const bool ring = layout.ring_length > 0.0;
+      const double radius = std::max(
+          location->radius + distance,
+          (ring ? 1.0 : 1.02) * (ring ? layout.ring_length : span) / (2.0 * std::numbers::pi));
+      const double arc_scale =
+          ring ? 2.0 * std::numbers::pi * radius / layout.ring_length : 1.0;  // stretch ≥ 1
       // The piece sewn to the front of the garment faces the front; else the middle of the part
       // does.
       double front_arc = layout.box.centre().x();
@@ -176,7 +197,7 @@ void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double dis
         for (int v = piece.first_vertex; v < piece.first_vertex + piece.vertex_count; ++v) {
           const Eigen::Vector2d laid =
               garment.rest_positions.row(v).transpose() + layout.offsets[i];
-          const double angle = (laid.x() - front_arc) / radius;
+          const double angle = arc_scale * (laid.x() - front_arc) / radius;
           positions.row(v) = (location->center + (laid.y() - layout.box.centre().y()) * axis +
                               radius * (std::cos(angle) * front + std::sin(angle) * across))
                                  .transpose();
