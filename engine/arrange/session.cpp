@@ -149,6 +149,7 @@ Phase Session::step(SessionObserver* observer) {
     return ran;
   }
   state_.report.seconds += now_seconds() - start;
+  state_.report.cancelled = false;  // the report describes where the session stands now
   checkpoint(ran == Phase::Seed || (ran == Phase::Check && !state_.batch));
   if (observer) observer->snapshot(snapshot());
   return ran;
@@ -276,7 +277,26 @@ void Session::run_post_process(SessionObserver* observer) {
   state_.phase = Phase::Done;
 }
 
+bool Session::order_continues_current(const std::vector<int>& order) const {
+  const std::vector<int>& done = state_.report.order;
+  if (done.size() > order.size() || !std::equal(done.begin(), done.end(), order.begin()))
+    return false;
+  if (!state_.batch) return true;
+  const std::vector<int>& batch = state_.batch->pieces();
+  return done.size() + batch.size() <= order.size() &&
+         std::is_permutation(batch.begin(), batch.end(), order.begin() + done.size());
+}
+
 void Session::reorder(const std::vector<int>& order) {
+  options_.order = order;
+  state_.explicit_order.clear();
+  if (order_continues_current(order)) {
+    // Nothing arranged changes (the same order at the end, or mid-batch): keep the state.
+    for (int piece : order)
+      if (!state_.arranged[piece] && state_.pieces[piece] != PieceState::InBatch)
+        state_.explicit_order.push_back(piece);
+    return;
+  }
   // The latest batch-complete checkpoint whose arranged order is a prefix of the new order.
   std::size_t keep = 0;
   for (std::size_t i = 0; i < checkpoints_.size(); ++i) {
@@ -287,10 +307,8 @@ void Session::reorder(const std::vector<int>& order) {
       keep = i;
   }
   restore(keep);
-  state_.explicit_order.clear();
   for (int piece : order)
     if (!state_.arranged[piece]) state_.explicit_order.push_back(piece);
-  options_.order = order;
 }
 
 void Session::reseed(std::optional<SeedPlan> seed) {

@@ -139,6 +139,8 @@ class Session {
   void run_post_process(SessionObserver* observer);
   void checkpoint(bool batch_complete);
   std::vector<int> next_explicit_batch() const;
+  // Whether `order` begins with what is arranged, then the batch in progress (in any order).
+  bool order_continues_current(const std::vector<int>& order) const;
   IterateCallback live_snapshots(SessionObserver* observer, Phase running, const int* iterations);
 
   std::shared_ptr<const Scene> scene_;

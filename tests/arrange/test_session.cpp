@@ -6,7 +6,8 @@
 //   and at most one phase record, and moves along the documented transitions only;
 // - piece states and the recorded order follow the batches;
 // - restore(i) gives back checkpoint i exactly (positions, phase) and drops the later ones;
-// - reorder() with the order already arranged leaves the state unchanged at batch boundaries;
+// - reorder() with the order already arranged leaves the state unchanged at batch boundaries,
+//   in the middle of a batch and at the end;
 // - a cancelled step leaves the session as before the step, and it continues from there.
 
 #include <QtTest>
@@ -277,10 +278,24 @@ class SessionTest : public QObject {
     session.step();
     QCOMPARE(session.phase(), Phase::Select);
     check_unchanged("after the seed");
-    QVERIFY(step_until(session, Phase::Align));
+    // In the middle of a batch: the arranged order followed by the batch in progress.
+    QVERIFY(step_until(session, Phase::Refine));
+    std::vector<int> mid_batch = session.report().order;
+    const std::vector<int> in_progress = session.report().batches.back().pieces;
+    mid_batch.insert(mid_batch.end(), in_progress.begin(), in_progress.end());
+    {
+      const Eigen::MatrixX3d positions = session.positions();
+      session.reorder(mid_batch);
+      QCOMPARE(session.phase(), Phase::Refine);
+      QVERIFY(session.positions() == positions);
+    }
     QVERIFY(step_until(session, Phase::Select));  // through any revisits of the first batch
     QCOMPARE(session.report().batches.size(), std::size_t{1});
     check_unchanged("after the first batch");
+    // At the end: the whole order again keeps the finished garment.
+    session.run();
+    QVERIFY(session.done());
+    check_unchanged("at the end");
   }
 
   void cancelled_step_leaves_the_state_as_before() {
@@ -313,6 +328,7 @@ class SessionTest : public QObject {
       QCOMPARE(session.step(&recorder), target);
       QCOMPARE(session.checkpoint_count(), checkpoints + 1);
       QVERIFY(allowed(target, session.phase(), true));
+      QVERIFY(!session.report().cancelled);  // the report says where the session stands now
     }
   }
 };
