@@ -1,0 +1,348 @@
+// TBB before any Qt header: its profiling header uses `emit` as a name, which Qt defines away.
+#include <tbb/task_arena.h>
+
+#include "ui/session_thread.h"
+
+#include <QMutexLocker>
+#include <algorithm>
+#include <exception>
+
+#include "engine/core/atomic_file.h"
+#include "engine/io/garment_obj.h"
+#include "engine/io/glb_export.h"
+#include "engine/io/session_report.h"
+#include "engine/quality/garment_metrics.h"
+#include "engine/quality/verdict.h"
+
+namespace garment::ui {
+
+// Runs on the worker: forwards live snapshots to the GUI and polls the interrupt flag.
+class SessionThread::Observer : public SessionObserver {
+ public:
+  explicit Observer(SessionThread& thread) : thread_(thread) {}
+
+  void progress(std::string_view stage, double fraction) override {
+    stage_ = QString::fromUtf8(stage.data(), static_cast<qsizetype>(stage.size()));
+    fraction_ = fraction;
+  }
+
+  void snapshot(const SessionSnapshot& snapshot) override {
+    // The engine throttles to SessionOptions::snapshot_interval; on top of that at most one live
+    // update is in flight, so that the GUI only ever draws the latest state.
+    if (thread_.update_in_flight_.exchange(true)) return;
+    SessionUpdate update;
+    update.positions = snapshot.positions;
+    update.phase = snapshot.phase;
+    update.running = snapshot.running;
+    update.live = true;
+    update.batch = snapshot.batch;
+    update.elapsed_seconds = snapshot.elapsed_seconds;
+    update.stage = stage_;
+    update.stage_fraction = fraction_;
+    update.pieces = snapshot.pieces;
+    update.order = snapshot.order;
+    emit thread_.updated(update);
+  }
+
+  bool cancel_requested() const override { return thread_.interrupt_.load(); }
+
+ private:
+  SessionThread& thread_;
+  QString stage_;
+  double fraction_ = -1.0;
+};
+
+SessionThread::SessionThread(QObject* parent) : QThread(parent) {
+  qRegisterMetaType<SessionUpdate>();
+  qRegisterMetaType<SessionState>();
+}
+
+SessionThread::~SessionThread() {
+  {
+    const QMutexLocker lock(&mutex_);
+    abort_ = true;
+    interrupt_ = true;  // the phase in progress stops at its next cancellation poll
+    condition_.wakeOne();
+  }
+  wait();
+}
+
+void SessionThread::post(Command command, bool interrupt) {
+  const QMutexLocker lock(&mutex_);
+  commands_.push_back(std::move(command));
+  if (interrupt) interrupt_ = true;
+  if (!isRunning()) start();
+  condition_.wakeOne();
+}
+
+void SessionThread::openScene(std::shared_ptr<const Garment> garment,
+                              std::shared_ptr<const Body> body, SessionOptions options) {
+  Command command(Command::Open);
+  command.garment = std::move(garment);
+  command.body = std::move(body);
+  command.options = std::move(options);
+  post(std::move(command), true);
+}
+
+void SessionThread::runSession() {
+  post(Command(Command::Run), false);
+}
+
+void SessionThread::pauseSession() {
+  post(Command(Command::Pause), false);
+}
+
+void SessionThread::stepSession() {
+  post(Command(Command::Step), false);
+}
+
+void SessionThread::stopSession() {
+  post(Command(Command::Stop), true);
+}
+
+void SessionThread::resetSession() {
+  post(Command(Command::Reset), true);
+}
+
+void SessionThread::reseed(std::optional<SeedPlan> seed, bool run_after) {
+  Command command(Command::Reseed);
+  command.seed = std::move(seed);
+  command.run_after = run_after;
+  post(std::move(command), true);
+}
+
+void SessionThread::reorder(std::vector<int> order, bool run_after) {
+  Command command(Command::Reorder);
+  command.order = std::move(order);
+  command.run_after = run_after;
+  post(std::move(command), true);
+}
+
+void SessionThread::restoreCheckpoint(int index) {
+  Command command(Command::Restore);
+  command.index = index;
+  post(std::move(command), true);
+}
+
+void SessionThread::exportTo(ExportKind kind, const QString& path) {
+  Command command(Command::Export);
+  command.export_kind = kind;
+  command.path = path;
+  // Not an interrupt: the export waits for the phase in progress and writes its result.
+  post(std::move(command), false);
+}
+
+bool SessionThread::wantsToStep() const {
+  return session_ && (running_ || steps_requested_ > 0);
+}
+
+void SessionThread::run() {
+  Observer observer(*this);
+  for (;;) {
+    std::deque<Command> commands;
+    {
+      QMutexLocker lock(&mutex_);
+      while (!abort_ && commands_.empty() && !wantsToStep())
+        condition_.wait(&mutex_);
+      if (abort_) break;
+      commands.swap(commands_);
+      // Commands that interrupted the last phase are taken now; the next phase starts afresh.
+      interrupt_ = false;
+    }
+    for (const Command& command : commands)
+      execute(command);
+    if (!wantsToStep()) continue;
+    if (session_->done()) {
+      running_ = false;
+      steps_requested_ = 0;
+      publishState();
+      continue;
+    }
+    stepOnce(observer);
+  }
+  // The session is the worker's: it ends here too.
+  session_.reset();
+  scene_.reset();
+}
+
+void SessionThread::stepOnce(Observer& observer) {
+  const std::size_t checkpoints = session_->checkpoint_count();
+  // The solver's parallel loops leave one core to the GUI thread (and the OpenGL rasteriser),
+  // so that the window stays responsive while a phase runs; on one core they share it.
+  const int cores = std::max(1, QThread::idealThreadCount());
+  tbb::task_arena arena(std::max(1, cores - 1));
+  Phase ran = Phase::Seed;
+  arena.execute([&] { ran = session_->step(&observer); });
+  // A completed phase adds a checkpoint; a cancelled one is undone by the engine and adds none.
+  last_cancelled_ = session_->checkpoint_count() == checkpoints;
+  if (!last_cancelled_) {
+    if (steps_requested_ > 0) --steps_requested_;
+    ++phases_completed_;
+    last_phase_ = QString::fromUtf8(to_string(ran));
+    const auto& phases = session_->report().phases;
+    if (ran != Phase::Select && ran != Phase::Check && !phases.empty())
+      last_iterations_ = phases.back().iterations;
+    history_ << checkpointLabel(ran);
+    if (session_->done()) running_ = false;
+  }
+  publishUpdate();
+  publishState();
+}
+
+QString SessionThread::checkpointLabel(Phase ran) const {
+  const int index = static_cast<int>(session_->checkpoint_count()) - 1;
+  const SessionSnapshot now = session_->snapshot();
+  QString label = QString("%1. %2").arg(index).arg(QString::fromUtf8(to_string(ran)));
+  if (ran != Phase::Seed && ran != Phase::PostProcess && now.batch >= 0)
+    label += QString(", batch %1").arg(now.batch + 1);
+  if (ran != Phase::Select && ran != Phase::Check)
+    label += QString(" (%1 iterations)").arg(last_iterations_);
+  return label;
+}
+
+void SessionThread::execute(const Command& command) {
+  if (command.kind != Command::Open && command.kind != Command::Export && !session_) return;
+  try {
+    switch (command.kind) {
+      case Command::Open: {
+        running_ = false;
+        steps_requested_ = 0;
+        session_.reset();
+        options_ = command.options;
+        scene_.reset();
+        scene_ = make_scene(command.garment, command.body);
+        session_ = std::make_unique<Session>(scene_, options_);
+        phases_completed_ = 0;
+        last_iterations_ = 0;
+        last_phase_.clear();
+        last_cancelled_ = false;
+        history_ = QStringList{QStringLiteral("0. start")};
+        publishUpdate();
+        publishState();
+        return;
+      }
+      case Command::Run:
+        running_ = true;
+        break;
+      case Command::Pause:
+        running_ = false;
+        steps_requested_ = 0;
+        break;
+      case Command::Step:
+        running_ = false;
+        ++steps_requested_;
+        break;
+      case Command::Stop:
+        running_ = false;
+        steps_requested_ = 0;
+        break;
+      case Command::Reset:
+        running_ = false;
+        steps_requested_ = 0;
+        session_->restore(0);
+        break;
+      case Command::Reseed:
+        session_->reseed(command.seed);
+        running_ = command.run_after;
+        steps_requested_ = 0;
+        break;
+      case Command::Reorder:
+        session_->reorder(command.order);
+        running_ = command.run_after;
+        steps_requested_ = 0;
+        break;
+      case Command::Restore:
+        if (command.index < 0 || command.index >= static_cast<int>(session_->checkpoint_count()))
+          return;
+        session_->restore(static_cast<std::size_t>(command.index));
+        running_ = false;
+        steps_requested_ = 0;
+        break;
+      case Command::Export:
+        exportFile(command.export_kind, command.path);
+        return;
+    }
+  } catch (const std::exception& error) {
+    running_ = false;
+    steps_requested_ = 0;
+    emit failed(
+        command.kind == Command::Open ? tr("Cannot start the arrangement") : tr("Arrangement"),
+        QString::fromUtf8(error.what()));
+    if (!session_) return;
+  }
+  // Restores (also inside reset, reseed and reorder) drop the later checkpoints.
+  while (history_.size() > static_cast<qsizetype>(session_->checkpoint_count()))
+    history_.removeLast();
+  last_cancelled_ = false;
+  publishUpdate();
+  publishState();
+}
+
+void SessionThread::exportFile(ExportKind kind, const QString& path) {
+  if (!session_) {
+    emit exportFinished(path, tr("nothing to export: no arrangement is open"));
+    return;
+  }
+  try {
+    const Scene& scene = session_->scene();
+    const std::filesystem::path file = path.toStdString();
+    switch (kind) {
+      case ExportKind::Obj:
+        write_garment_obj(file, *scene.garment, session_->positions());
+        break;
+      case ExportKind::Glb:
+        write_glb(file,
+                  garment_glb_meshes(*scene.garment, session_->positions(), scene.body.get()));
+        break;
+      case ExportKind::Report: {
+        const BodyReference reference(scene.body->mesh);
+        const GarmentMetrics metrics =
+            measure_garment(*scene.garment, session_->positions(), &reference,
+                            expected_regions_from_names(*scene.garment));
+        const QualityVerdict verdict = judge_garment(*scene.garment, metrics);
+        write_file_atomically(file, session_report_json(*session_, metrics, verdict) + "\n");
+        break;
+      }
+    }
+  } catch (const std::exception& error) {
+    emit exportFinished(path, QString::fromUtf8(error.what()));
+    return;
+  }
+  emit exportFinished(path, {});
+}
+
+void SessionThread::publishUpdate() {
+  const SessionSnapshot snapshot = session_->snapshot();
+  SessionUpdate update;
+  update.positions = snapshot.positions;
+  update.phase = snapshot.phase;
+  update.running = snapshot.running;
+  update.batch = snapshot.batch;
+  update.elapsed_seconds = snapshot.elapsed_seconds;
+  update.pieces = snapshot.pieces;
+  update.order = snapshot.order;
+  emit updated(update);
+}
+
+void SessionThread::publishState() {
+  SessionState state;
+  state.has_session = true;
+  state.running = running_;
+  state.done = session_->done();
+  state.phase = session_->phase();
+  state.batch = session_->snapshot().batch;
+  state.batch_count = static_cast<int>(session_->report().batches.size());
+  state.phases_completed = phases_completed_;
+  state.last_iterations = last_iterations_;
+  state.last_phase = last_phase_;
+  state.cancelled = last_cancelled_;
+  state.order = session_->report().order;
+  state.requested_order = session_->options().order;
+  state.automatic_seed = session_->automatic_seed();
+  state.seed = session_->options().seed ? *session_->options().seed : state.automatic_seed;
+  state.history = history_;
+  state.scene = scene_;
+  emit stateChanged(state);
+}
+
+}  // namespace garment::ui

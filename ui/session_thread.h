@@ -1,0 +1,155 @@
+#pragma once
+// The arrangement session on a worker thread (DESIGN.md "Threads"), in the manner of Qt's
+// Mandelbrot example (renderthread.cpp): the GUI thread copies each command into a queue under a
+// mutex and wakes the worker; the worker alone owns and touches the engine session (and builds the
+// scene, which runs the classifier), and sends what the GUI shows by value through queued signals:
+// live snapshots during solves (throttled, at most one in flight), and the session's state after
+// every phase or command. The destructor aborts the running phase and waits for the thread.
+//
+// Run steps until done or paused; Pause stops after the phase in progress; Step runs exactly one
+// phase; Stop cancels the phase in progress (the engine undoes it, so the session stays at that
+// phase's start); Reset, reseed, reorder and restore cancel the phase in progress too, then change
+// the session. Every call returns at once and is safe only from the thread that owns the object.
+
+#include <QMetaType>
+#include <QMutex>
+#include <QString>
+#include <QStringList>
+#include <QThread>
+#include <QWaitCondition>
+#include <atomic>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "engine/arrange/session.h"
+
+namespace garment::ui {
+
+// A view of the session during a solve or after a phase, by value (positions are shared and
+// immutable).
+struct SessionUpdate {
+  std::shared_ptr<const Eigen::MatrixX3d> positions;
+  Phase phase = Phase::Seed;    // the phase about to run (Done at the end)
+  Phase running = Phase::Seed;  // the phase being solved (live updates)
+  bool live = false;            // sent during a solve
+  int batch = -1;
+  double elapsed_seconds = 0.0;
+  QString stage;                 // the solver's stage name (live updates)
+  double stage_fraction = -1.0;  // of the solver's iteration budget for that stage; < 0 unknown
+  std::vector<garment::PieceState> pieces;
+  std::vector<int> order;  // pieces arranged so far, in order
+};
+
+// The session's state after a phase or a command.
+struct SessionState {
+  bool has_session = false;
+  bool running = false;  // Run mode (steps until done or paused)
+  bool done = false;
+  Phase phase = Phase::Seed;
+  int batch = -1;
+  int batch_count = 0;                 // batches started so far
+  int phases_completed = 0;            // since the session was made (a counter the tests can read)
+  int last_iterations = 0;             // solver iterations of the last phase with a solve
+  QString last_phase;                  // the last phase that ran ("" before any)
+  bool cancelled = false;              // the last phase was cancelled (and undone)
+  std::vector<int> order;              // pieces arranged so far, in order
+  std::vector<int> requested_order;    // the session's explicit order (reorder)
+  SeedPlan seed;                       // the seed in use: manual, else the classifier's
+  SeedPlan automatic_seed;             // the classifier's
+  QStringList history;                 // one label per checkpoint, oldest first
+  std::shared_ptr<const Scene> scene;  // immutable; for the classifier's verdict and exports
+};
+
+class SessionThread : public QThread {
+  Q_OBJECT
+ public:
+  enum class ExportKind { Obj, Glb, Report };
+
+  explicit SessionThread(QObject* parent = nullptr);
+  ~SessionThread() override;
+
+  // A new session on this garment and body (the scene is built on the worker). Options apply to
+  // this and later sessions.
+  void openScene(std::shared_ptr<const Garment> garment, std::shared_ptr<const Body> body,
+                 SessionOptions options = {});
+  void runSession();
+  void pauseSession();
+  void stepSession();
+  void stopSession();
+  void resetSession();
+  // A manual seed (nullopt: the classifier's); starts over from the seed, then runs if asked.
+  void reseed(std::optional<SeedPlan> seed, bool run_after);
+  // Arranges in this order from the first batch that changes it, then runs if asked.
+  void reorder(std::vector<int> order, bool run_after);
+  // Goes back to checkpoint `index` (of SessionState::history) and holds there.
+  void restoreCheckpoint(int index);
+  // Writes the current (last completed phase's) garment; reports through exportFinished.
+  void exportTo(ExportKind kind, const QString& path);
+
+  // The GUI calls this once it has shown a live update: until then further live updates are
+  // dropped, so that a slow GUI never falls behind a queue of stale frames.
+  void acknowledgeUpdate() { update_in_flight_ = false; }
+
+ signals:
+  void updated(const garment::ui::SessionUpdate& update);
+  void stateChanged(const garment::ui::SessionState& state);
+  void failed(const QString& title, const QString& message);
+  void exportFinished(const QString& path, const QString& error);  // error empty: written
+
+ protected:
+  void run() override;
+
+ private:
+  struct Command {
+    enum Kind { Open, Run, Pause, Step, Stop, Reset, Reseed, Reorder, Restore, Export };
+    explicit Command(Kind k) : kind(k) {}
+    Kind kind;
+    std::shared_ptr<const Garment> garment;
+    std::shared_ptr<const Body> body;
+    SessionOptions options;
+    std::optional<SeedPlan> seed;
+    std::vector<int> order;
+    bool run_after = false;
+    int index = 0;
+    ExportKind export_kind = ExportKind::Obj;
+    QString path;
+  };
+  class Observer;
+
+  void post(Command command, bool interrupt);
+  bool wantsToStep() const;  // worker thread
+  void execute(const Command& command);
+  void stepOnce(Observer& observer);
+  void publishState();
+  void publishUpdate();
+  void exportFile(ExportKind kind, const QString& path);
+  QString checkpointLabel(Phase ran) const;
+
+  // Shared with the GUI thread, under mutex_.
+  QMutex mutex_;
+  QWaitCondition condition_;
+  std::deque<Command> commands_;
+  bool abort_ = false;
+  // Read by the engine's cancellation polls without the mutex.
+  std::atomic<bool> interrupt_{false};
+  std::atomic<bool> update_in_flight_{false};
+
+  // Worker thread only.
+  std::shared_ptr<const Scene> scene_;
+  std::unique_ptr<Session> session_;
+  SessionOptions options_;
+  bool running_ = false;
+  int steps_requested_ = 0;
+  int phases_completed_ = 0;
+  int last_iterations_ = 0;
+  QString last_phase_;
+  bool last_cancelled_ = false;
+  QStringList history_;
+};
+
+}  // namespace garment::ui
+
+Q_DECLARE_METATYPE(garment::ui::SessionUpdate)
+Q_DECLARE_METATYPE(garment::ui::SessionState)
