@@ -2,6 +2,8 @@
 
 #include <QApplication>
 #include <QMouseEvent>
+#include <QOffscreenSurface>
+#include <QOpenGLContext>
 #include <QOpenGLFramebufferObject>
 #include <QOpenGLFunctions>
 #include <QOpenGLShaderProgram>
@@ -54,11 +56,34 @@ std::unique_ptr<QOpenGLShaderProgram> build_program(const QString& vertex,
 
 }  // namespace
 
+// Whether OpenGL is Mesa's software rasteriser (llvmpipe, softpipe: Xvfb, machines without a GPU
+// driver), asked once of a throw-away context.
+static bool software_renderer() {
+  static const bool software = [] {
+    QOpenGLContext context;
+    context.setFormat(QSurfaceFormat::defaultFormat());
+    QOffscreenSurface surface;
+    surface.setFormat(context.format());
+    surface.create();
+    if (!context.create() || !context.makeCurrent(&surface)) return false;
+    const auto* renderer =
+        reinterpret_cast<const char*>(context.functions()->glGetString(GL_RENDERER));
+    const QString name = renderer ? QString::fromLatin1(renderer) : QString();
+    context.doneCurrent();
+    return name.contains("llvmpipe") || name.contains("softpipe") || name.contains("Software");
+  }();
+  return software;
+}
+
 AvatarView::AvatarView(QWidget* parent) : QOpenGLWidget(parent) {
   QSurfaceFormat format = QSurfaceFormat::defaultFormat();
   format.setVersion(3, 3);
   format.setProfile(QSurfaceFormat::CoreProfile);
   format.setDepthBufferSize(24);
+  // Multisampling costs a software rasteriser several times the frame time, and live updates
+  // need the frames (an overriding GARMENT_STUDIO_SAMPLES is left alone).
+  if (!qEnvironmentVariableIsSet("GARMENT_STUDIO_SAMPLES") && software_renderer())
+    format.setSamples(0);
   setFormat(format);
   setMinimumSize(200, 200);
 }
@@ -266,6 +291,7 @@ void AvatarView::uploadPending() {
     if (garmentShown()) {
       uploadMesh(garment_mesh_, *positions_, garment_->triangles, !garment_topology_dirty_);
       if (garment_topology_dirty_) uploadOutlines();
+      ++garment_frames_;
     }
     // Topology is uploaded together with the first positions that fit it.
     if (garmentShown() || !garment_) garment_topology_dirty_ = false;

@@ -75,6 +75,9 @@ class AvatarView : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   QPointF projectToView(const Eigen::Vector3d& point) const;
   // The piece visible at a widget position, -1 for the body or the background.
   int pieceAt(const QPoint& position);
+  // How many garment states were drawn (one per paint that uploaded new positions): the live
+  // frame rate's numerator.
+  int garmentFrameCount() const { return garment_frames_; }
   // False when OpenGL 3.3 core or the shaders are not available; the view then stays blank.
   bool renderingAvailable() const { return rendering_available_; }
 
@@ -129,6 +132,7 @@ class AvatarView : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
        markers_dirty_ = true;
 
   bool rendering_available_ = false;
+  int garment_frames_ = 0;
   std::unique_ptr<QOpenGLShaderProgram> body_program_, garment_program_, marker_program_,
       pick_program_;
   GpuMesh body_mesh_, garment_mesh_;

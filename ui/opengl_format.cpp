@@ -1,6 +1,8 @@
 #include "ui/opengl_format.h"
 
 #include <QSurfaceFormat>
+#include <QtGlobal>
+#include <algorithm>
 
 namespace garment::ui {
 
@@ -10,7 +12,12 @@ void use_opengl_core_profile() {
   format.setVersion(3, 3);
   format.setProfile(QSurfaceFormat::CoreProfile);
   format.setDepthBufferSize(24);
-  format.setSamples(4);
+  // 4× multisampling smooths the garment's edges on a GPU; the software rasteriser (Mesa's
+  // llvmpipe, e.g. under Xvfb) pays for it several times over per frame, which would make live
+  // updates slow there. GARMENT_STUDIO_SAMPLES overrides the sample count.
+  bool set = false;
+  const int samples = qEnvironmentVariableIntValue("GARMENT_STUDIO_SAMPLES", &set);
+  format.setSamples(set ? std::max(0, samples) : 4);
   QSurfaceFormat::setDefaultFormat(format);
 }
 
