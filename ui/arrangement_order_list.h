@@ -22,6 +22,8 @@ class ArrangementOrderList : public QListWidget {
   // Does not emit orderChanged.
   void setOrder(const std::vector<int>& pieces, const QStringList& names);
   QList<int> order() const;
+  // A drag from this list is in progress (the session should not refill the list under it).
+  bool dragging() const { return state() == QAbstractItemView::DraggingState; }
 
   // Moves the item at `from` so that it ends up before the item now at `to` (to == count() moves
   // it last), as a drop does. Emits orderChanged when the order changed.

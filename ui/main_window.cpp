@@ -168,6 +168,7 @@ void MainWindow::createActions() {
     view_menu_->addAction(dock->toggleViewAction());
 
   QMenu* arrange_menu = menuBar()->addMenu(tr("&Arrangement"));
+  arrange_menu_ = arrange_menu;
   session_actions_.run_pause = arrange_menu->addAction(tr("&Run / pause"));
   session_actions_.run_pause->setShortcut(QKeySequence(Qt::Key_Space));
   session_actions_.step = arrange_menu->addAction(tr("&Step one phase"));
@@ -183,6 +184,7 @@ void MainWindow::createActions() {
     action->setEnabled(false);
 
   QToolBar* toolbar = addToolBar(tr("Main"));
+  toolbar_ = toolbar;
   toolbar->setObjectName("main_toolbar");
   toolbar->addAction(open_pattern);
   toolbar->addAction(open_body);
@@ -220,6 +222,23 @@ void MainWindow::openRecent(const QString& path) {
 
 void MainWindow::setErrorPresenter(ErrorPresenter presenter) {
   error_presenter_ = std::move(presenter);
+}
+
+void MainWindow::showError(const QString& title, const QString& message) {
+  presentError(title, message);
+}
+
+QDockWidget* MainWindow::addPanel(const QString& title, const QString& name, QWidget* widget) {
+  auto* dock = new QDockWidget(title, this);
+  dock->setObjectName(name);
+  dock->setWidget(widget);
+  addDockWidget(Qt::RightDockWidgetArea, dock);
+  view_menu_->addAction(dock->toggleViewAction());
+  return dock;
+}
+
+void MainWindow::restoreDockLayout() {
+  restoreState(QSettings().value("window/state").toByteArray());
 }
 
 void MainWindow::presentError(const QString& title, const QString& message) {

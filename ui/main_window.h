@@ -23,6 +23,8 @@
 #include "ui/piece_state.h"
 
 class QAction;
+class QDockWidget;
+class QToolBar;
 class QListWidget;
 class QMenu;
 class QSplitter;
@@ -61,6 +63,14 @@ class MainWindow : public QMainWindow {
   bool openDemoPattern();
   bool openDefaultBody();
   void setErrorPresenter(ErrorPresenter presenter);
+  // Shows an error through the presenter (a dialog by default); changes nothing else.
+  void showError(const QString& title, const QString& message);
+  // A dock on the right, listed in the View menu (for the session's panels).
+  QDockWidget* addPanel(const QString& title, const QString& name, QWidget* widget);
+  // Restores the saved dock layout again, once panels added after construction exist.
+  void restoreDockLayout();
+  QMenu* arrangementMenu() const { return arrange_menu_; }
+  QToolBar* mainToolBar() const { return toolbar_; }
 
   std::shared_ptr<const Garment> garment() const { return garment_; }
   // The body with its signed distance field and 15 locations.
@@ -123,6 +133,8 @@ class MainWindow : public QMainWindow {
   ArrangementStatusBar* status_bar_ = nullptr;
   QMenu* recent_menu_ = nullptr;
   QMenu* view_menu_ = nullptr;
+  QMenu* arrange_menu_ = nullptr;
+  QToolBar* toolbar_ = nullptr;
   SessionActions session_actions_;
   ErrorPresenter error_presenter_;
 

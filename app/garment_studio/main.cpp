@@ -1,14 +1,20 @@
 // garment-studio: the desktop editor. Wiring only; the window lives in ui/.
 //
-//   garment-studio [PATTERN.json] [--body BODY.obj] [--select PIECE] [--location NAME]
-//                  [--screenshot OUT.png [--after-ms N]] [--size WIDTHxHEIGHT]
-// Without a pattern the bundled demo opens, without a body the bundled default body. --screenshot
-// saves the window after N ms (default 1500) and exits (0 saved, 1 not saved, 2 bad arguments, 3 a
-// file failed to open), with fresh settings.
+//   garment-studio [PATTERN.json] [--body BODY.obj] [--run | --steps N] [--select PIECE[,PIECE…]]
+//                  [--location NAME] [--seed] [--arrange-next PIECE]
+//                  [--screenshot OUT.png [--after-ms N] [--when-idle]] [--size WIDTHxHEIGHT]
+// Without a pattern the bundled demo opens, without a body the bundled default body. --run starts
+// the arrangement at once; --steps runs that many phases; --seed seeds the arrangement with the
+// selected pieces at the chosen location and runs; --arrange-next, once the arrangement is done,
+// arranges that piece next and re-runs. --screenshot saves the window after N ms (default 1500;
+// with --when-idle, N ms after the arrangement has come to rest) and exits (0 saved, 1 not saved
+// or timed out, 2 bad arguments, 3 a file failed to open), with fresh settings.
 
+#include <QAction>
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QListWidget>
+#include <QPushButton>
 #include <QRegularExpression>
 #include <QSettings>
 #include <QTemporaryDir>
@@ -16,7 +22,9 @@
 #include <cstdio>
 
 #include "ui/main_window.h"
+#include "ui/manual_seed_panel.h"
 #include "ui/opengl_format.h"
+#include "ui/studio_controller.h"
 #include "ui/window_screenshot.h"
 
 int main(int argc, char** argv) {
@@ -31,23 +39,34 @@ int main(int argc, char** argv) {
   parser.addPositionalArgument("pattern",
                                "GarmentCode pattern (.json); the bundled demo if absent.");
   const QCommandLineOption body_option("body", "Body mesh (.obj).", "file");
-  const QCommandLineOption select_option("select", "Select the piece of this name.", "piece");
-  const QCommandLineOption location_option("location", "Highlight the body location of this name.",
+  const QCommandLineOption run_option("run", "Start the arrangement at launch.");
+  const QCommandLineOption steps_option("steps", "Run this many phases at launch.", "n");
+  const QCommandLineOption select_option("select", "Select the pieces of these names (a,b).",
+                                         "pieces");
+  const QCommandLineOption location_option("location", "Choose the body location of this name.",
                                            "location");
+  const QCommandLineOption seed_option(
+      "seed", "Seed with the selected pieces at the chosen location, and run.");
+  const QCommandLineOption next_option(
+      "arrange-next", "Once arranged, arrange this piece next and run again.", "piece");
   const QCommandLineOption screenshot_option("screenshot", "Save the window as PNG and exit.",
                                              "file");
   const QCommandLineOption after_option("after-ms", "Delay before the screenshot.", "ms", "1500");
+  const QCommandLineOption idle_option("when-idle",
+                                       "Count the delay from when the arrangement comes to rest.");
   const QCommandLineOption size_option("size", "Window size, e.g. 1440x900.", "size");
-  parser.addOptions(
-      {body_option, select_option, location_option, screenshot_option, after_option, size_option});
+  parser.addOptions({body_option, run_option, steps_option, select_option, location_option,
+                     seed_option, next_option, screenshot_option, after_option, idle_option,
+                     size_option});
   parser.process(application);
 
-  bool delay_ok = false;
+  bool delay_ok = false, steps_ok = true;
   const int delay_ms = parser.value(after_option).toInt(&delay_ok);
+  const int steps = parser.isSet(steps_option) ? parser.value(steps_option).toInt(&steps_ok) : 0;
   const QRegularExpressionMatch size =
       QRegularExpression("^(\\d+)x(\\d+)$").match(parser.value(size_option));
-  if (!delay_ok || delay_ms < 0 || (parser.isSet(size_option) && !size.hasMatch()) ||
-      parser.positionalArguments().size() > 1) {
+  if (!delay_ok || delay_ms < 0 || !steps_ok || steps < 0 ||
+      (parser.isSet(size_option) && !size.hasMatch()) || parser.positionalArguments().size() > 1) {
     std::fprintf(stderr, "garment-studio: bad arguments (see --help)\n");
     return 2;
   }
@@ -66,6 +85,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "garment-studio: %s: %s\n", qPrintable(title), qPrintable(message));
     });
   if (size.hasMatch()) window.resize(size.captured(1).toInt(), size.captured(2).toInt());
+  garment::ui::StudioController controller(&window);
+  controller.setRunWhenOpened(parser.isSet(run_option));
 
   const QStringList positional = parser.positionalArguments();
   bool opened =
@@ -73,10 +94,14 @@ int main(int argc, char** argv) {
   opened = (parser.isSet(body_option) ? window.openBody(parser.value(body_option))
                                       : window.openDefaultBody()) &&
            opened;
-  if (parser.isSet(select_option) && window.garment()) {
-    const int piece =
-        window.garment()->pattern.panel_index(parser.value(select_option).toStdString());
-    if (piece >= 0) window.selectPieces({piece});
+  auto piece_index = [&window](const QString& name) {
+    return window.garment() ? window.garment()->pattern.panel_index(name.toStdString()) : -1;
+  };
+  if (parser.isSet(select_option)) {
+    QList<int> pieces;
+    for (const QString& name : parser.value(select_option).split(',', Qt::SkipEmptyParts))
+      if (piece_index(name) >= 0) pieces << piece_index(name);
+    window.selectPieces(pieces);
   }
   if (parser.isSet(location_option)) {
     const QList<QListWidgetItem*> found =
@@ -86,13 +111,49 @@ int main(int argc, char** argv) {
   window.show();
   if (scripted && !opened) return 3;
 
-  if (scripted) {
-    const QString path = parser.value(screenshot_option);
+  // What the command line asks for once the session is ready, and when the screenshot is due.
+  const bool seed = parser.isSet(seed_option);
+  const QString arrange_next = parser.value(next_option);
+  const bool when_idle = parser.isSet(idle_option);
+  bool started = false, next_done = false, shot_due = false;
+  auto take_screenshot = [&window, path = parser.value(screenshot_option), delay_ms] {
     QTimer::singleShot(delay_ms, &window, [&window, path] {
       const bool saved = garment::ui::save_window_screenshot(window, path);
       if (!saved) std::fprintf(stderr, "garment-studio: cannot write %s\n", qPrintable(path));
       QApplication::exit(saved ? 0 : 1);
     });
-  }
+  };
+  QObject::connect(&controller, &garment::ui::StudioController::stateApplied, &window,
+                   [&](const garment::ui::SessionState& state) {
+                     if (!state.has_session) return;
+                     if (!started) {
+                       started = true;
+                       if (seed) controller.seedPanel()->seedButton()->click();
+                       for (int i = 0; i < steps; ++i)
+                         controller.sessionThread()->stepSession();
+                       return;
+                     }
+                     const bool at_rest =
+                         !state.running &&
+                         (steps > 0 ? state.phases_completed >= steps : state.done);
+                     if (!at_rest) return;
+                     if (!arrange_next.isEmpty() && !next_done) {
+                       next_done = true;
+                       window.selectPieces({piece_index(arrange_next)});
+                       controller.arrangeNextAction()->trigger();
+                       return;
+                     }
+                     if (scripted && when_idle && !shot_due) {
+                       shot_due = true;
+                       take_screenshot();
+                     }
+                   });
+
+  if (scripted && !when_idle) take_screenshot();
+  if (scripted && when_idle)  // an arrangement that never comes to rest fails the script
+    QTimer::singleShot(180000, &window, [] {
+      std::fprintf(stderr, "garment-studio: the arrangement did not come to rest in 180 s\n");
+      QApplication::exit(1);
+    });
   return QApplication::exec();
 }

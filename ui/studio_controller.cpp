@@ -1,0 +1,374 @@
+#include "ui/studio_controller.h"
+
+#include <QAction>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QListWidget>
+#include <QMenu>
+#include <QPushButton>
+#include <QSettings>
+#include <QToolBar>
+#include <algorithm>
+#include <exception>
+
+#include "engine/seeding/seed_class.h"
+#include "ui/arrangement_order_list.h"
+#include "ui/main_window.h"
+#include "ui/manual_seed_panel.h"
+
+namespace garment::ui {
+
+namespace {
+
+ui::PieceState to_view_state(garment::PieceState state) {
+  switch (state) {
+    case garment::PieceState::Waiting:
+      return ui::PieceState::Waiting;
+    case garment::PieceState::InBatch:
+      return ui::PieceState::InBatch;
+    case garment::PieceState::Arranged:
+      return ui::PieceState::Arranged;
+    case garment::PieceState::Seed:
+      return ui::PieceState::Seed;
+  }
+  return ui::PieceState::Waiting;
+}
+
+bool contains(const std::vector<int>& values, int value) {
+  return std::find(values.begin(), values.end(), value) != values.end();
+}
+
+}  // namespace
+
+StudioController::StudioController(MainWindow* window, SessionOptions options)
+    : window_(window), options_(std::move(options)), thread_(std::make_unique<SessionThread>()) {
+  const SessionActions& actions = window_->sessionActions();
+  connect(actions.run_pause, &QAction::triggered, this, [this] {
+    if (state_.running)
+      thread_->pauseSession();
+    else
+      thread_->runSession();
+  });
+  connect(actions.step, &QAction::triggered, thread_.get(), &SessionThread::stepSession);
+  connect(actions.stop, &QAction::triggered, thread_.get(), &SessionThread::stopSession);
+  connect(actions.reset, &QAction::triggered, thread_.get(), &SessionThread::resetSession);
+  connect(actions.export_obj, &QAction::triggered, this,
+          [this] { askExport(SessionThread::ExportKind::Obj); });
+  connect(actions.export_glb, &QAction::triggered, this,
+          [this] { askExport(SessionThread::ExportKind::Glb); });
+  connect(actions.export_report, &QAction::triggered, this,
+          [this] { askExport(SessionThread::ExportKind::Report); });
+
+  arrange_next_ = new QAction(tr("Arrange selected &next"), this);
+  arrange_next_->setShortcut(QKeySequence(tr("Ctrl+N")));
+  arrange_next_->setToolTip(
+      tr("Arrange the selected piece right after the arranged ones (or right after the seed) and "
+         "re-run from there"));
+  connect(arrange_next_, &QAction::triggered, this, &StudioController::arrangeSelectedNext);
+  window_->arrangementMenu()->addSeparator();
+  window_->arrangementMenu()->addAction(arrange_next_);
+  window_->mainToolBar()->insertAction(nullptr, arrange_next_);
+
+  seed_panel_ = new ManualSeedPanel(window_);
+  window_->addPanel(tr("Manual seed"), "seed_dock", seed_panel_);
+  connect(seed_panel_, &ManualSeedPanel::seedRequested, this, &StudioController::seedFromChoice);
+  connect(seed_panel_, &ManualSeedPanel::automaticSeedRequested, this,
+          [this] { thread_->reseed(std::nullopt, true); });
+  connect(window_, &MainWindow::pieceSelectionChanged, this, &StudioController::updateSeedChoice);
+  connect(window_, &MainWindow::bodyLocationSelected, this, &StudioController::updateSeedChoice);
+
+  history_list_ = new QListWidget(window_);
+  history_list_->setObjectName("history_list");
+  history_list_->setToolTip(tr("Click a state to go back to it; Run or Step continue from there"));
+  window_->addPanel(tr("History"), "history_dock", history_list_);
+  connect(history_list_, &QListWidget::itemClicked, this,
+          [this](QListWidgetItem* item) { restoreCheckpoint(history_list_->row(item)); });
+  // The order list and the history are both about the sequence of batches: one place, two tabs.
+  // Wider docks than Qt's default, so that the seed texts and the probabilities fit.
+  auto* order_dock = window_->findChild<QDockWidget*>("order_dock");
+  auto* history_dock = window_->findChild<QDockWidget*>("history_dock");
+  if (order_dock && history_dock) {
+    window_->tabifyDockWidget(order_dock, history_dock);
+    order_dock->raise();
+  }
+  QList<QDockWidget*> docks = window_->findChildren<QDockWidget*>();
+  window_->resizeDocks(docks, QList<int>(docks.size(), 430), Qt::Horizontal);
+  window_->restoreDockLayout();
+
+  connect(window_->orderList(), &ArrangementOrderList::orderChanged, this,
+          &StudioController::orderDragged);
+  connect(window_, &MainWindow::garmentOpened, this, &StudioController::openSession);
+  connect(window_, &MainWindow::bodyOpened, this, &StudioController::openSession);
+
+  connect(thread_.get(), &SessionThread::updated, this, &StudioController::applyUpdate);
+  connect(thread_.get(), &SessionThread::stateChanged, this, &StudioController::applyState);
+  connect(thread_.get(), &SessionThread::failed, window_, &MainWindow::showError);
+  connect(thread_.get(), &SessionThread::exportFinished, this,
+          [this](const QString& path, const QString& error) {
+            if (!error.isEmpty())
+              window_->showError(tr("Cannot export"), error);
+            else
+              window_->statusBar()->showMessage(tr("wrote %1").arg(path), 5000);
+            emit exportDone(path, error);
+          });
+
+  updateSeedChoice();
+  updateActions();
+  openSession();
+}
+
+StudioController::~StudioController() = default;
+
+void StudioController::openSession() {
+  if (!window_->garment() || !window_->body()) return;
+  state_ = {};
+  opening_ = true;
+  shown_scene_.reset();
+  thread_->openScene(window_->garment(), window_->body(), options_);
+  if (run_when_opened_) {
+    thread_->runSession();
+    run_when_opened_ = false;
+  }
+  window_->statusBar()->showMessage(tr("preparing the arrangement (classifying pieces)…"));
+  updateActions();
+}
+
+void StudioController::applyUpdate(const SessionUpdate& update) {
+  thread_->acknowledgeUpdate();
+  // An update of a session replaced since (the worker may have sent it before the new one).
+  if (opening_ || !window_->garment() || update.pieces.size() != window_->garment()->pieces.size())
+    return;
+  last_update_ = update;
+  if (update.live) ++live_updates_;
+  window_->setGarmentPositions(update.positions);
+  std::vector<PieceState> states;
+  states.reserve(update.pieces.size());
+  for (garment::PieceState state : update.pieces)
+    states.push_back(to_view_state(state));
+  window_->setPieceStates(states);
+
+  int placed = 0;
+  for (garment::PieceState state : update.pieces)
+    if (state == garment::PieceState::Arranged || state == garment::PieceState::Seed) ++placed;
+  ArrangementStatus status;
+  const bool done = update.phase == Phase::Done;
+  if (update.live) {
+    status.phase = QString::fromUtf8(to_string(update.running));
+    if (update.stage_fraction >= 0.0 && !update.stage.isEmpty())
+      status.phase += tr(" (%1 %2 %)").arg(update.stage).arg(qRound(100.0 * update.stage_fraction));
+  } else {
+    status.phase = done ? tr("done") : tr("next: %1").arg(to_string(update.phase));
+  }
+  status.batch = update.batch + 1;
+  status.iteration = state_.last_iterations;
+  status.elapsed_seconds = update.elapsed_seconds;
+  // Placing the pieces is most of the work; the post-process the last tenth.
+  status.progress = done ? 1.0 : 0.9 * placed / std::max<std::size_t>(1, update.pieces.size());
+  status.running = state_.running;
+  window_->setArrangementStatus(status);
+}
+
+void StudioController::applyState(const SessionState& state) {
+  if (opening_) {
+    opening_ = false;
+    window_->statusBar()->clearMessage();
+  }
+  state_ = state;
+  showClassification(state);
+  seed_panel_->setAutomaticSeed(seedText(state.automatic_seed));
+  seed_panel_->setSeedInUse((state.seed.manual ? tr("manual: ") : tr("classifier: ")) +
+                            seedText(state.seed));
+  if (!window_->orderList()->dragging()) showOrder(state.order);
+
+  {
+    const QSignalBlocker blocker(history_list_);
+    history_list_->clear();
+    history_list_->addItems(state.history);
+    history_list_->setCurrentRow(static_cast<int>(state.history.size()) - 1);
+  }
+  ArrangementStatus status = window_->arrangementStatusBar()->status();
+  status.running = state.running;
+  status.iteration = state.last_iterations;
+  status.batch_count = state.done ? state.batch_count : 0;
+  if (!state.running)
+    status.phase = state.done ? tr("done") : tr("next: %1").arg(to_string(state.phase));
+  window_->setArrangementStatus(status);
+  updateActions();
+  emit stateApplied(state);
+}
+
+void StudioController::updateActions() {
+  const SessionActions& actions = window_->sessionActions();
+  const bool ready = state_.has_session && !opening_;
+  actions.run_pause->setEnabled(ready && (state_.running || !state_.done));
+  actions.run_pause->setText(state_.running ? tr("Pause") : tr("Run"));
+  actions.step->setEnabled(ready && !state_.running && !state_.done);
+  actions.stop->setEnabled(ready && state_.running);
+  actions.reset->setEnabled(ready && state_.history.size() > 1);
+  for (QAction* action : {actions.export_obj, actions.export_glb, actions.export_report})
+    action->setEnabled(ready);
+  arrange_next_->setEnabled(ready);
+  seed_panel_->automaticButton()->setEnabled(ready);
+  updateSeedChoice();
+}
+
+void StudioController::showOrder(const std::vector<int>& arranged) {
+  // Arranged pieces in their order, then the batch in progress, then what the user asked for,
+  // then the rest: the list a user drags pieces in.
+  std::vector<int> order = arranged;
+  const std::size_t piece_count = window_->garment() ? window_->garment()->pieces.size() : 0;
+  for (std::size_t piece = 0; piece < last_update_.pieces.size(); ++piece)
+    if (last_update_.pieces[piece] == garment::PieceState::InBatch &&
+        !contains(order, static_cast<int>(piece)))
+      order.push_back(static_cast<int>(piece));
+  for (int piece : state_.requested_order)
+    if (!contains(order, piece)) order.push_back(piece);
+  for (std::size_t piece = 0; piece < piece_count; ++piece)
+    if (!contains(order, static_cast<int>(piece))) order.push_back(static_cast<int>(piece));
+  shown_order_ = order;
+  window_->setArrangementOrder(order);
+}
+
+void StudioController::orderDragged(const QList<int>& dragged) {
+  const std::vector<int> order(dragged.begin(), dragged.end());
+  // The session gets the order up to the last position that changed: those pieces in that order,
+  // and the selection heuristic for the rest (a full explicit order would arrange every remaining
+  // piece alone in its batch).
+  int last_changed = -1;
+  for (std::size_t i = 0; i < order.size(); ++i)
+    if (i >= shown_order_.size() || shown_order_[i] != order[i]) last_changed = static_cast<int>(i);
+  if (last_changed < 0) return;
+  shown_order_ = order;
+  thread_->reorder(std::vector<int>(order.begin(), order.begin() + last_changed + 1), true);
+}
+
+void StudioController::arrangeSelectedNext() {
+  const QList<int> selected = window_->selectedPieces();
+  if (selected.isEmpty() || !state_.has_session) {
+    window_->statusBar()->showMessage(tr("select a piece to arrange next"), 4000);
+    return;
+  }
+  const int piece = selected.front();
+  std::vector<int> order;
+  if (!contains(state_.order, piece)) {
+    order = state_.order;  // right after what is arranged now
+  } else {
+    const std::vector<int> seed = state_.seed.pieces();
+    if (contains(seed, piece)) {
+      window_->statusBar()->showMessage(tr("a seed piece is always arranged first"), 4000);
+      return;
+    }
+    order = seed;  // already arranged: as early as possible, right after the seed
+  }
+  order.push_back(piece);
+  thread_->reorder(order, true);
+}
+
+void StudioController::updateSeedChoice() {
+  QStringList pieces;
+  if (window_->garment())
+    for (int piece : window_->selectedPieces())
+      pieces << QString::fromStdString(window_->garment()->pieces[piece].name);
+  QString location;
+  const int row = window_->locationList()->currentRow();
+  if (window_->body() && row >= 0 && row < static_cast<int>(window_->body()->locations.size()))
+    location = QString::fromStdString(window_->body()->locations[row].name);
+  seed_panel_->setChoice(pieces, location);
+  if (!state_.has_session || opening_) seed_panel_->seedButton()->setEnabled(false);
+}
+
+void StudioController::seedFromChoice() {
+  if (!window_->garment() || !window_->body()) return;
+  const int row = window_->locationList()->currentRow();
+  if (row < 0 || row >= static_cast<int>(window_->body()->locations.size())) return;
+  std::vector<std::string> names, locations;
+  for (int piece : window_->selectedPieces())
+    names.push_back(window_->garment()->pieces[piece].name);
+  for (const BodyLocation& location : window_->body()->locations)
+    locations.push_back(location.name);
+  try {
+    SeedPlan plan = manual_seed(*window_->garment(), names, locations[row], locations);
+    thread_->reseed(std::move(plan), true);
+  } catch (const std::exception& error) {
+    window_->showError(tr("Cannot seed there"), QString::fromUtf8(error.what()));
+  }
+}
+
+void StudioController::showClassification(const SessionState& state) {
+  if (!state.scene || state.scene == shown_scene_) return;
+  shown_scene_ = state.scene;
+  const Scene& scene = *state.scene;
+  QStringList class_names;
+  for (std::string_view name : kSeedClassNames)
+    class_names << QString::fromUtf8(name.data(), static_cast<qsizetype>(name.size()));
+  const std::vector<int> seed = state.automatic_seed.pieces();
+  std::vector<PieceClassification> rows;
+  for (std::size_t group = 0; group < scene.classification.groups.size(); ++group) {
+    ui::PieceClassification row;
+    QStringList names;
+    for (int piece : scene.classification.groups[group]) {
+      names << QString::fromStdString(scene.garment->pieces[piece].name);
+      row.seed = row.seed || contains(seed, piece);
+    }
+    row.piece = names.join('+').toStdString();
+    row.predicted = static_cast<int>(scene.classification.group_class(static_cast<int>(group)));
+    for (Eigen::Index c = 0; c < scene.classification.probabilities.cols(); ++c)
+      row.probabilities.push_back(
+          scene.classification.probabilities(static_cast<Eigen::Index>(group), c));
+    rows.push_back(std::move(row));
+  }
+  window_->setClassifications(class_names, std::move(rows));
+}
+
+QString StudioController::seedText(const SeedPlan& plan) const {
+  QStringList parts;
+  const Garment* garment = shown_scene_ ? shown_scene_->garment.get() : nullptr;
+  for (const SeedPart& part : plan.parts) {
+    QStringList names;
+    for (int piece : part.pieces)
+      names << (garment ? QString::fromStdString(garment->pieces[piece].name)
+                        : QString::number(piece));
+    parts << tr("%1 → %2").arg(names.join(", "), QString::fromStdString(part.location));
+  }
+  QString text = parts.join("; ");
+  if (!plan.reason.empty()) text += QString(" (%1)").arg(QString::fromStdString(plan.reason));
+  return text;
+}
+
+void StudioController::restoreCheckpoint(int row) {
+  if (row < 0 || row >= state_.history.size()) return;
+  thread_->restoreCheckpoint(row);
+}
+
+void StudioController::exportTo(SessionThread::ExportKind kind, const QString& path) {
+  thread_->exportTo(kind, path);
+}
+
+void StudioController::askExport(SessionThread::ExportKind kind) {
+  QSettings settings;
+  const QString directory = settings.value("export/directory").toString();
+  const QString base =
+      window_->garment()
+          ? QFileInfo(QString::fromStdString(window_->garment()->pattern.source)).completeBaseName()
+          : QString("garment");
+  QString title, suffix, filter;
+  switch (kind) {
+    case SessionThread::ExportKind::Obj:
+      title = tr("Export OBJ"), suffix = ".obj", filter = tr("Wavefront OBJ (*.obj)");
+      break;
+    case SessionThread::ExportKind::Glb:
+      title = tr("Export GLB"), suffix = ".glb", filter = tr("glTF binary (*.glb)");
+      break;
+    case SessionThread::ExportKind::Report:
+      title = tr("Export report"), suffix = "_report.json", filter = tr("JSON (*.json)");
+      break;
+  }
+  const QString path =
+      QFileDialog::getSaveFileName(window_, title, QDir(directory).filePath(base + suffix), filter);
+  if (path.isEmpty()) return;
+  settings.setValue("export/directory", QFileInfo(path).absolutePath());
+  exportTo(kind, path);
+}
+
+}  // namespace garment::ui

@@ -1,0 +1,81 @@
+#pragma once
+// Connects the main window to an arrangement session on the worker thread (SessionThread): opens a
+// session when a pattern and a body are open; drives it from the Run/Pause, Step, Stop and Reset
+// actions; shows its live updates in both views and the status bar; and adds the panels that act
+// on it: the classifier's verdict with a manual seed, the arrangement order (drag, or "arrange
+// next") and the history of checkpoints. Exports go through the worker. Only user interface here:
+// every computation is the engine's, on the worker.
+
+#include <QObject>
+#include <memory>
+
+#include "ui/session_thread.h"
+
+class QAction;
+class QListWidget;
+
+namespace garment::ui {
+
+class MainWindow;
+class ManualSeedPanel;
+
+class StudioController : public QObject {
+  Q_OBJECT
+ public:
+  // options: for every session this controller opens (tests pass smaller budgets).
+  explicit StudioController(MainWindow* window, SessionOptions options = {});
+  ~StudioController() override;
+
+  // Start the arrangement as soon as the next session is ready (garment-studio --run).
+  void setRunWhenOpened(bool run) { run_when_opened_ = run; }
+
+  SessionThread* sessionThread() const { return thread_.get(); }
+  const SessionState& state() const { return state_; }
+  const SessionUpdate& lastUpdate() const { return last_update_; }
+  int liveUpdateCount() const { return live_updates_; }
+
+  ManualSeedPanel* seedPanel() const { return seed_panel_; }
+  QListWidget* historyList() const { return history_list_; }
+  QAction* arrangeNextAction() const { return arrange_next_; }
+
+  // What the File menu's export entries do after asking for a file name.
+  void exportTo(SessionThread::ExportKind kind, const QString& path);
+  // Goes back to a checkpoint (a history row), as clicking it does.
+  void restoreCheckpoint(int row);
+
+ signals:
+  // After the window shows a new session state.
+  void stateApplied(const garment::ui::SessionState& state);
+  void exportDone(const QString& path, const QString& error);
+
+ private:
+  void openSession();
+  void applyUpdate(const SessionUpdate& update);
+  void applyState(const SessionState& state);
+  void updateActions();
+  void showOrder(const std::vector<int>& arranged);
+  void orderDragged(const QList<int>& order);
+  void arrangeSelectedNext();
+  void seedFromChoice();
+  void updateSeedChoice();
+  void showClassification(const SessionState& state);
+  QString seedText(const SeedPlan& plan) const;
+  void askExport(SessionThread::ExportKind kind);
+
+  MainWindow* window_;
+  SessionOptions options_;
+  std::unique_ptr<SessionThread> thread_;
+  SessionState state_;
+  SessionUpdate last_update_;
+  std::shared_ptr<const Scene> shown_scene_;  // whose classification the table shows
+  std::vector<int> shown_order_;              // what the order list shows
+  bool run_when_opened_ = false;
+  bool opening_ = false;  // a session was asked for and has not reported yet
+  int live_updates_ = 0;
+
+  ManualSeedPanel* seed_panel_ = nullptr;
+  QListWidget* history_list_ = nullptr;
+  QAction* arrange_next_ = nullptr;
+};
+
+}  // namespace garment::ui
