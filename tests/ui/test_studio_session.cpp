@@ -1,0 +1,455 @@
+// The editor driving a real arrangement session on its worker thread, through the window's own
+// actions and widgets: the demo runs to the end with live updates (the 3D view changes and shows
+// the garment's colours) while the event loop stays responsive; a manual seed chosen with the mouse
+// becomes the session's seed; dragging a piece in the order list re-runs from there; Step runs
+// exactly one phase; Stop in the middle of a solve leaves a session that continues; the history
+// goes back to a checkpoint; a bad file or a failed export is reported and changes nothing; the
+// exports write what the session holds.
+//
+// The figures (live frame rate, event-loop latency) are printed with qInfo for the record.
+
+#include <QAction>
+#include <QElapsedTimer>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QListWidget>
+#include <QPushButton>
+#include <QTableView>
+#include <QTemporaryDir>
+#include <QtTest>
+#include <algorithm>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <set>
+
+#include "engine/io/garment_obj.h"
+#include "tests/ui/ui_test_support.h"
+#include "ui/arrangement_order_list.h"
+#include "ui/avatar_view.h"
+#include "ui/event_loop_latency_probe.h"
+#include "ui/main_window.h"
+#include "ui/manual_seed_panel.h"
+#include "ui/pattern_view.h"
+#include "ui/studio_controller.h"
+
+using namespace garment;
+
+namespace {
+
+// Budgets well below the defaults, for the tests that check control flow rather than results:
+// every phase still solves, only for fewer iterations.
+SessionOptions quick_options() {
+  SessionOptions options;
+  ArrangementParameters& p = options.arrangement;
+  p.align = {40, 60};
+  p.body_round = {8, 12};
+  p.body_final = {30, 40};
+  p.refine = {40, 60};
+  p.settle = {30, 40};
+  p.max_flatten_revisits = 0;
+  p.seed_iterations = 120;
+  p.post_process_iterations = 120;
+  return options;
+}
+
+bool sewn_together(const Garment& garment, int a, int b) {
+  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
+    const int pa = garment.vertex_piece(garment.sewing_pairs(k, 0));
+    const int pb = garment.vertex_piece(garment.sewing_pairs(k, 1));
+    if ((pa == a && pb == b) || (pa == b && pb == a)) return true;
+  }
+  return false;
+}
+
+int index_of(const std::vector<int>& values, int value) {
+  const auto found = std::find(values.begin(), values.end(), value);
+  return found == values.end() ? -1 : static_cast<int>(found - values.begin());
+}
+
+}  // namespace
+
+class StudioSessionTest : public QObject {
+  Q_OBJECT
+
+ private:
+  std::unique_ptr<ui::MainWindow> window_;
+  std::unique_ptr<ui::StudioController> controller_;
+  QStringList errors_;
+
+  // A window on the demo and the default body with a session ready (nothing run yet).
+  void open(SessionOptions options, QSize size = {1100, 700}) {
+    controller_.reset();
+    window_ = std::make_unique<ui::MainWindow>();
+    window_->setErrorPresenter([this](const QString& title, const QString& message) {
+      errors_ << title + ": " + message;
+    });
+    // Small enough that the software renderer under Xvfb keeps up, like a laptop window would.
+    window_->resize(size);
+    controller_ = std::make_unique<ui::StudioController>(window_.get(), std::move(options));
+    QVERIFY(window_->openDemoPattern());
+    QVERIFY(window_->openDefaultBody());
+    window_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
+    QVERIFY(QTest::qWaitFor([this] { return state().has_session; }, 60000));
+  }
+
+  const ui::SessionState& state() const { return controller_->state(); }
+
+  bool waitFor(const std::function<bool(const ui::SessionState&)>& predicate, int timeout_ms) {
+    return QTest::qWaitFor([&] { return predicate(state()); }, timeout_ms);
+  }
+
+  QImage avatarImage() {
+    QCoreApplication::processEvents();
+    return window_->avatarView()->grabFramebuffer();
+  }
+
+ private slots:
+  void init() { errors_.clear(); }
+
+  void cleanup() {
+    controller_.reset();  // aborts a running session and joins the worker
+    window_.reset();
+  }
+
+  void demoRunsToTheEndWithLiveUpdates() {
+    open({});
+    ui::AvatarView* avatar = window_->avatarView();
+    avatar->setOrbit(0, 0);
+    avatar->frameAll();
+    const QImage before = avatarImage();
+    const Eigen::MatrixX3d initial = state().scene->initial_positions;
+    const int frames_before = avatar->garmentFrameCount();
+
+    ui::EventLoopLatencyProbe probe;
+    QElapsedTimer clock;
+    clock.start();
+    probe.start();
+    QVERIFY(window_->sessionActions().run_pause->isEnabled());
+    window_->sessionActions().run_pause->trigger();
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.done; }, 240000));
+    probe.stop();
+    const double seconds = clock.elapsed() / 1000.0;
+    const int frames = avatar->garmentFrameCount() - frames_before;
+    qInfo(
+        "demo: %.2f s, %d live updates, %d garment frames drawn = %.1f frames/s; event loop "
+        "latency max %.1f ms, p99 %.1f ms over %d samples",
+        seconds, controller_->liveUpdateCount(), frames, frames / seconds, probe.maxDelayMs(),
+        probe.percentileDelayMs(0.99), probe.sampleCount());
+
+    QVERIFY(errors_.isEmpty());
+    QVERIFY(controller_->liveUpdateCount() > 0);
+    QCOMPARE(state().order.size(), window_->garment()->pieces.size());
+    QVERIFY(!state().running);
+    QVERIFY(!window_->sessionActions().run_pause->isEnabled());  // nothing left to run
+    QCOMPARE(window_->arrangementStatusBar()->phaseText(), QString("phase: done"));
+    QCOMPARE(window_->arrangementStatusBar()->progressPercent(), 100);
+
+    // The garment moved from its flat placement, and the view shows it where it went.
+    const Eigen::MatrixX3d& arranged = *controller_->lastUpdate().positions;
+    QVERIFY(arranged.allFinite());
+    QVERIFY((arranged - initial).rowwise().norm().maxCoeff() > 0.05);
+    const QImage after = avatarImage();
+    int changed = 0;
+    const QImage a = before.convertToFormat(QImage::Format_RGB32);
+    const QImage b = after.convertToFormat(QImage::Format_RGB32);
+    QCOMPARE(a.size(), b.size());
+    for (int y = 0; y < a.height(); ++y)
+      for (int x = 0; x < a.width(); ++x)
+        if (!test::colours_close(QColor(a.pixel(x, y)), QColor(b.pixel(x, y)), 12)) ++changed;
+    GARMENT_VERIFY_IMAGE(changed > 2000, after, "studio_demo_unchanged");
+    GARMENT_VERIFY_IMAGE(test::count_pixels(after, test::looks_outside) > 1000, after,
+                         "studio_demo_no_garment");
+    // Drawn more than one intermediate state: the live view is live.
+    QVERIFY(frames >= 3);
+
+    // For the record: what one frame of the 3D view costs here (software OpenGL under Xvfb).
+    QElapsedTimer paint_clock;
+    paint_clock.start();
+    const std::clock_t cpu_start = std::clock();
+    for (int i = 0; i < 10; ++i)
+      avatar->repaint();
+    qInfo("3D view repaint, idle: %.1f ms per frame, %.1f ms CPU time (%d cores)",
+          paint_clock.elapsed() / 10.0, 1000.0 * (std::clock() - cpu_start) / CLOCKS_PER_SEC / 10.0,
+          QThread::idealThreadCount());
+  }
+
+  void eventLoopStaysResponsiveWhileSolving() {
+    // The solve runs on the worker; what the GUI thread still does is draw the live frames. A
+    // software rasteriser (Xvfb on a shared CI machine) pays per pixel of the whole window for each
+    // of them, so the window is small here; the demo test above prints the figures at full size.
+    open({}, {720, 450});
+    ui::EventLoopLatencyProbe probe;
+    // The machine's own latency first: the same window, nothing running.
+    probe.start();
+    QTest::qWait(1500);
+    probe.stop();
+    const double idle_p99 = probe.percentileDelayMs(0.99), idle_max = probe.maxDelayMs();
+    qInfo("event loop latency idle: max %.1f ms, p99 %.1f ms (%d samples)", idle_max, idle_p99,
+          probe.sampleCount());
+    // And what one frame of the window costs to draw: each live update is one, on the GUI thread.
+    QElapsedTimer paint_clock;
+    paint_clock.start();
+    for (int i = 0; i < 5; ++i)
+      window_->avatarView()->repaint();
+    const double frame_ms = paint_clock.elapsed() / 5.0;
+    qInfo("one frame of the 3D view: %.1f ms", frame_ms);
+    probe.start();
+    window_->sessionActions().run_pause->trigger();
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.done; }, 240000));
+    probe.stop();
+    qInfo("event loop latency while solving: max %.1f ms, p99 %.1f ms, median %.1f ms (%d samples)",
+          probe.maxDelayMs(), probe.percentileDelayMs(0.99), probe.percentileDelayMs(0.5),
+          probe.sampleCount());
+    QVERIFY(probe.sampleCount() > 20);
+    // A renderer that needs most of the 50 ms for one frame (software OpenGL on an oversubscribed
+    // machine) cannot show that the solve leaves the window alone: each frame alone blocks the
+    // loop about that long. The figures above are printed either way.
+    if (frame_ms > 25.0)
+      QSKIP(qPrintable(
+          QString("one frame takes %1 ms to draw here; the target needs < 25 ms").arg(frame_ms)));
+    QVERIFY2(probe.maxDelayMs() < 50.0, qPrintable(QString::number(probe.maxDelayMs())));
+  }
+
+  void manualSeedThroughTheWidgets() {
+    open(quick_options());
+    const Garment& garment = *window_->garment();
+    const std::vector<int> automatic = state().automatic_seed.pieces();
+    QVERIFY(!automatic.empty());
+    QVERIFY(!state().seed.manual);
+    // The classifier's verdict is shown: one row per classified group, probabilities summing to 1,
+    // the seed marked.
+    ui::ClassifierTableModel* model = window_->classifierModel();
+    QVERIFY(model->rowCount() > 0);
+    bool seed_marked = false;
+    for (const ui::PieceClassification& row : model->classifications()) {
+      double sum = 0.0;
+      for (double p : row.probabilities)
+        sum += p;
+      QVERIFY(std::abs(sum - 1.0) < 1e-6);
+      seed_marked = seed_marked || row.seed;
+    }
+    QVERIFY(seed_marked);
+    QVERIFY(controller_->seedPanel()->automaticSeedText().contains(
+        QString::fromStdString(garment.pieces[automatic.front()].name)));
+
+    // A piece the classifier did not choose, at a location its seed does not use.
+    int piece = -1;
+    for (int p = 0; p < static_cast<int>(garment.pieces.size()) && piece < 0; ++p)
+      if (index_of(automatic, p) < 0) piece = p;
+    QVERIFY(piece >= 0);
+    std::set<std::string> used;
+    for (const SeedPart& part : state().automatic_seed.parts)
+      used.insert(part.location);
+    QListWidget* locations = window_->locationList();
+    int row = -1;
+    for (int r = 0; r < locations->count() && row < 0; ++r)
+      if (!used.count(locations->item(r)->text().toStdString())) row = r;
+    QVERIFY(row >= 0);
+    const std::string location = locations->item(row)->text().toStdString();
+
+    QPushButton* seed_button = controller_->seedPanel()->seedButton();
+    QVERIFY(!seed_button->isEnabled());  // nothing chosen yet
+    ui::PatternView* pattern = window_->patternView();
+    QTest::mouseClick(pattern->viewport(), Qt::LeftButton, Qt::NoModifier,
+                      pattern->pieceLabelPosition(piece));
+    QCOMPARE(window_->selectedPieces(), QList<int>{piece});
+    locations->scrollToItem(locations->item(row));
+    QTest::mouseClick(locations->viewport(), Qt::LeftButton, Qt::NoModifier,
+                      locations->visualItemRect(locations->item(row)).center());
+    QCOMPARE(locations->currentRow(), row);
+    QVERIFY(seed_button->isEnabled());
+    QTest::mouseClick(seed_button, Qt::LeftButton);
+
+    // The session was reseeded and ran its seed phase from that choice.
+    QVERIFY(waitFor(
+        [](const ui::SessionState& s) { return s.seed.manual && s.phases_completed >= 1; }, 60000));
+    QCOMPARE(state().seed.pieces(), std::vector<int>{piece});
+    QCOMPARE(state().seed.parts.front().location, location);
+    QVERIFY(!state().order.empty());
+    QCOMPARE(state().order.front(), piece);
+    QVERIFY(controller_->seedPanel()->seedInUseText().contains(
+        QString::fromStdString(garment.pieces[piece].name)));
+    QVERIFY(controller_->seedPanel()->seedInUseText().contains(QString::fromStdString(location)));
+    QVERIFY(errors_.isEmpty());
+
+    // And back to the classifier's seed.
+    QTest::mouseClick(controller_->seedPanel()->automaticButton(), Qt::LeftButton);
+    QVERIFY(waitFor([](const ui::SessionState& s) { return !s.seed.manual && !s.order.empty(); },
+                    60000));
+    QCOMPARE(state().seed.pieces(), automatic);
+  }
+
+  void reorderChangesTheOrderAndReruns() {
+    open(quick_options());
+    window_->sessionActions().run_pause->trigger();
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.done; }, 120000));
+    const std::vector<int> first = state().order;
+    const Garment& garment = *window_->garment();
+    const std::vector<int> seed = state().seed.pieces();
+    // The last-arranged piece sewn to the seed: move it to right after the seed.
+    int moved = -1;
+    for (int i = static_cast<int>(first.size()) - 1;
+         i >= static_cast<int>(seed.size()) && moved < 0; --i)
+      for (int s : seed)
+        if (sewn_together(garment, first[i], s) && i > static_cast<int>(seed.size()))
+          moved = first[i];
+    QVERIFY2(moved >= 0, "the demo has no piece sewn to the seed that comes later than second");
+    const int from = index_of(first, moved);
+
+    ui::ArrangementOrderList* list = window_->orderList();
+    QCOMPARE(list->order(), QList<int>(first.begin(), first.end()));
+    const int phases_before = state().phases_completed;
+    const QStringList history_before = state().history;
+    list->movePiece(from, static_cast<int>(seed.size()));  // what a drop there does
+
+    QVERIFY(waitFor(
+        [&](const ui::SessionState& s) { return s.done && s.phases_completed > phases_before; },
+        120000));
+    const std::vector<int> second = state().order;
+    QCOMPARE(second.size(), first.size());
+    QVERIFY(second != first);
+    QCOMPARE(index_of(second, moved), static_cast<int>(seed.size()));
+    QCOMPARE(std::vector<int>(second.begin(), second.begin() + seed.size()), seed);
+    // The seed was kept, not solved again: the history up to it is the same.
+    QVERIFY(state().history.size() >= 2);
+    QCOMPARE(state().history.mid(0, 2), history_before.mid(0, 2));
+    QCOMPARE(list->order(), QList<int>(second.begin(), second.end()));
+    QVERIFY(errors_.isEmpty());
+
+    // "Arrange next" on a selected piece reorders the same way.
+    const int other = second.back();
+    if (index_of(seed, other) < 0) {
+      window_->selectPieces({other});
+      const int phases = state().phases_completed;
+      controller_->arrangeNextAction()->trigger();
+      QVERIFY(
+          waitFor([&](const ui::SessionState& s) { return s.done && s.phases_completed > phases; },
+                  120000));
+      QVERIFY(index_of(state().requested_order, other) >= 0);
+    }
+  }
+
+  void stepRunsExactlyOnePhase() {
+    open(quick_options());
+    QAction* step = window_->sessionActions().step;
+    for (int i = 0; i < 5; ++i) {
+      const int completed = state().phases_completed;
+      const Phase phase = state().phase;
+      const int history = static_cast<int>(state().history.size());
+      QVERIFY(step->isEnabled());
+      step->trigger();
+      QVERIFY(waitFor([&](const ui::SessionState& s) { return s.phases_completed > completed; },
+                      60000));
+      // And nothing more: the session holds after the one phase.
+      QTest::qWait(300);
+      QCOMPARE(state().phases_completed, completed + 1);
+      QCOMPARE(state().last_phase, QString::fromUtf8(to_string(phase)));
+      QCOMPARE(static_cast<int>(state().history.size()), history + 1);
+      QVERIFY(!state().running);
+      QVERIFY(state().phase != phase);  // every phase hands over to another one
+    }
+    // The history goes back to a checkpoint; the session continues from there.
+    controller_->restoreCheckpoint(1);
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.history.size() == 2; }, 30000));
+    QCOMPARE(state().phase, Phase::Select);  // after the seed
+    const int completed = state().phases_completed;
+    step->trigger();
+    QVERIFY(
+        waitFor([&](const ui::SessionState& s) { return s.phases_completed > completed; }, 60000));
+    QCOMPARE(state().last_phase, QString("select"));
+  }
+
+  void stopMidSolveLeavesAConsistentSession() {
+    open({});
+    // Into the first batch's solves (the seed's snapshots come fast and the batch's phases are the
+    // longest): step to Align, then run and stop during the solve.
+    while (state().phase != Phase::Align) {
+      const int completed = state().phases_completed;
+      window_->sessionActions().step->trigger();
+      QVERIFY(waitFor([&](const ui::SessionState& s) { return s.phases_completed > completed; },
+                      60000));
+    }
+    const int live_before = controller_->liveUpdateCount();
+    const int completed = state().phases_completed;
+    window_->sessionActions().run_pause->trigger();
+    QVERIFY(
+        QTest::qWaitFor([&] { return controller_->liveUpdateCount() > live_before + 1; }, 60000));
+    QVERIFY(window_->sessionActions().stop->isEnabled());
+    window_->sessionActions().stop->trigger();
+    QVERIFY(waitFor([](const ui::SessionState& s) { return !s.running; }, 60000));
+    QTest::qWait(200);
+    QVERIFY(!state().running);
+    // One checkpoint per completed phase, and the interrupted phase was undone, not half-kept.
+    QCOMPARE(static_cast<int>(state().history.size()), state().phases_completed + 1);
+    QVERIFY(state().phases_completed >= completed);
+    QVERIFY(controller_->lastUpdate().positions->allFinite());
+    QVERIFY(window_->sessionActions().step->isEnabled());
+    QVERIFY(errors_.isEmpty());
+
+    // It continues to the end.
+    window_->sessionActions().run_pause->trigger();
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.done; }, 240000));
+    QCOMPARE(state().order.size(), window_->garment()->pieces.size());
+  }
+
+  void badFileShowsAnErrorAndKeepsTheSession() {
+    open(quick_options());
+    window_->sessionActions().step->trigger();
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.phases_completed == 1; }, 60000));
+    const std::shared_ptr<const Garment> garment = window_->garment();
+    const ui::SessionState before = state();
+
+    QTemporaryDir directory;
+    const QString broken = directory.filePath("broken.json");
+    std::ofstream(broken.toStdString()) << "{ \"pattern\": ";
+    QVERIFY(!window_->openPattern(broken));
+    QCOMPARE(errors_.size(), 1);
+    QVERIFY(errors_.front().contains("broken.json"));
+    QCOMPARE(window_->garment(), garment);
+    QTest::qWait(300);
+    QCOMPARE(state().scene, before.scene);
+    QCOMPARE(state().phases_completed, before.phases_completed);
+    QCOMPARE(state().history, before.history);
+
+    // An export that cannot be written is reported the same way.
+    QSignalSpy done(controller_.get(), &ui::StudioController::exportDone);
+    controller_->exportTo(ui::SessionThread::ExportKind::Obj,
+                          directory.filePath("no/such/directory/garment.obj"));
+    QVERIFY(done.wait(30000));
+    QCOMPARE(errors_.size(), 2);
+    QCOMPARE(state().history, before.history);
+    QVERIFY(window_->sessionActions().step->isEnabled());
+  }
+
+  void exportsWriteTheSessionsGarment() {
+    open(quick_options());
+    window_->sessionActions().run_pause->trigger();
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.done; }, 120000));
+    QTemporaryDir directory;
+    QSignalSpy done(controller_.get(), &ui::StudioController::exportDone);
+    const QString obj = directory.filePath("demo.obj"), glb = directory.filePath("demo.glb"),
+                  report = directory.filePath("demo_report.json");
+    controller_->exportTo(ui::SessionThread::ExportKind::Obj, obj);
+    controller_->exportTo(ui::SessionThread::ExportKind::Glb, glb);
+    controller_->exportTo(ui::SessionThread::ExportKind::Report, report);
+    QVERIFY(QTest::qWaitFor([&] { return done.count() == 3; }, 60000));
+    for (const QList<QVariant>& args : done)
+      QVERIFY2(args.at(1).toString().isEmpty(), qPrintable(args.at(1).toString()));
+    const Eigen::MatrixX3d read = read_garment_obj(obj.toStdString(), *window_->garment());
+    QVERIFY((read - *controller_->lastUpdate().positions).cwiseAbs().maxCoeff() < 1e-5);
+    QFile glb_file(glb);
+    QVERIFY(glb_file.open(QIODevice::ReadOnly));
+    QCOMPARE(glb_file.read(4), QByteArray("glTF"));
+    QFile report_file(report);
+    QVERIFY(report_file.open(QIODevice::ReadOnly));
+    const QJsonObject json = QJsonDocument::fromJson(report_file.readAll()).object();
+    QCOMPARE(json.value("order").toArray().size(), static_cast<int>(state().order.size()));
+    QVERIFY(errors_.isEmpty());
+  }
+};
+
+GARMENT_UI_TEST_MAIN(StudioSessionTest)
+#include "test_studio_session.moc"
