@@ -62,12 +62,16 @@ struct ListedCell {
 
 class BodySurface {
  public:
-  // `origin` and `spacing` are the grid's; `cells` its samples − 1 per axis.
+  // `origin` and `spacing` are the grid's, `lists` built for it (build_cell_triangle_lists or
+  // the disk cache). Computes the pseudo-normals, and the winding class of each triangle unless
+  // `lists` carries it.
   BodySurface(const BodyMesh& body, const Eigen::Vector3d& origin, double spacing,
               CellTriangleLists lists);
 
-  // The exact signed distance (negative inside) and its gradient (unit, pointing outward) when
-  // `point` lies in a listed cell; false (nothing written) otherwise.
+  // The signed distance (negative inside) and its gradient (unit, pointing outward) when `point`
+  // lies in a listed cell; false (nothing written) otherwise. Exact in the band cells; in the
+  // kink cells, the distance to the nearest of the listed triangles (see ListedCell). About
+  // 2–5 µs per answer (bench_body), against ~0.4 µs for interpolation.
   bool signed_distance(const Eigen::Vector3d& point, double& value,
                        Eigen::Vector3d& gradient) const;
   // True when `point` lies in a listed cell.
