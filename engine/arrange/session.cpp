@@ -5,6 +5,7 @@
 
 #include "engine/arrange/post_process.h"
 #include "engine/seeding/seed_shape.h"
+#include "engine/solver/chebyshev_solver.h"
 
 namespace garment {
 namespace {
@@ -96,21 +97,27 @@ IterateCallback Session::live_snapshots(SessionObserver* observer, Phase running
                                         const int* iterations) {
   if (!observer || options_.snapshot_interval <= 0.0) return {};
   auto last = std::make_shared<double>(0.0);
-  return [this, observer, running, iterations, last](const Eigen::MatrixX3d& positions) {
-    const double now = now_seconds();
-    if (now - *last < options_.snapshot_interval) return;
-    *last = now;
-    SessionSnapshot snapshot;
-    snapshot.phase = state_.phase;
-    snapshot.running = running;
-    snapshot.batch = state_.batch_index;
-    snapshot.iteration = iterations ? *iterations : 0;
-    snapshot.elapsed_seconds = now - started_;
-    snapshot.positions = std::make_shared<const Eigen::MatrixX3d>(positions);
-    snapshot.pieces = state_.pieces;
-    snapshot.order = state_.report.order;
-    observer->snapshot(snapshot);
-  };
+  // The solver calls back once per iteration batch; the phase's own count is only known after
+  // its solves, so the live count adds up the batches seen so far.
+  auto batches_seen = std::make_shared<int>(0);
+  return
+      [this, observer, running, iterations, last, batches_seen](const Eigen::MatrixX3d& positions) {
+        ++*batches_seen;
+        const double now = now_seconds();
+        if (now - *last < options_.snapshot_interval) return;
+        *last = now;
+        SessionSnapshot snapshot;
+        snapshot.phase = state_.phase;
+        snapshot.running = running;
+        snapshot.batch = state_.batch_index;
+        snapshot.iteration =
+            (iterations ? *iterations : 0) + *batches_seen * SolverSettings{}.batch_iterations;
+        snapshot.elapsed_seconds = now - started_;
+        snapshot.positions = std::make_shared<const Eigen::MatrixX3d>(positions);
+        snapshot.pieces = state_.pieces;
+        snapshot.order = state_.report.order;
+        observer->snapshot(snapshot);
+      };
 }
 
 Phase Session::step(SessionObserver* observer) {
