@@ -136,18 +136,18 @@ void triangulate(ObjContents& contents, const std::string& file, double area_flo
   for (std::size_t p = 0; p < contents.polygons.size(); ++p) {
     const std::vector<int>& polygon = contents.polygons[p];
     const int line = contents.polygon_lines[p];
-    for (std::size_t k = 0; k < polygon.size(); ++k) {
+    for (std::size_t k = 0; k < polygon.size(); ++k)
       if (polygon[k] >= vertex_count)
         throw_input_error(file, line_place(line),
                           "vertex index " + std::to_string(polygon[k] + 1) +
                               " is out of range (the file defines " + std::to_string(vertex_count) +
                               " vertices)");
-      for (std::size_t l = 0; l < k; ++l)
-        if (polygon[l] == polygon[k])
-          throw_input_error(
-              file, line_place(line),
-              "degenerate face: vertex " + std::to_string(polygon[k] + 1) + " appears twice");
-    }
+    // Sorted, not pairwise: a face line may have a million corners.
+    std::vector<int> sorted = polygon;
+    std::sort(sorted.begin(), sorted.end());
+    if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+      throw_input_error(file, line_place(line),
+                        "degenerate face: vertex " + std::to_string(*twice + 1) + " appears twice");
     std::vector<std::array<int, 3>> pieces;
     if (polygon.size() == 4) {
       // The shorter diagonal gives the better-shaped pair of triangles for a non-planar quad.
@@ -321,8 +321,11 @@ Eigen::Vector3d BodyMesh::upper_corner() const {
 }
 
 BodyMesh load_body_obj(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  ObjContents contents = parse_obj(read_file(path), file);
+  return parse_body_obj(read_file(path), path.string());
+}
+
+BodyMesh parse_body_obj(const std::string& text, const std::string& file) {
+  ObjContents contents = parse_obj(text, file);
 
   Eigen::Vector3d lower = contents.vertices.front(), upper = lower;
   for (const Eigen::Vector3d& vertex : contents.vertices) {

@@ -27,6 +27,8 @@ struct BodyMesh {
 // or not manifold (a signed distance needs an inside), non-finite numbers. Triangles are
 // re-oriented consistently and outward (positive signed volume of every closed component).
 BodyMesh load_body_obj(const std::filesystem::path& path);
+// The same from the file's text; `source` names it in messages.
+BodyMesh parse_body_obj(const std::string& text, const std::string& source);
 
 // Checks a mesh built in memory the same way (closed, manifold, orientable, non-degenerate,
 // finite) and orients it outward. `mesh.source` names it in messages.
