@@ -6,9 +6,11 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <random>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "engine/core/error.h"
 
@@ -28,6 +30,19 @@ std::filesystem::path temporary_sibling(const std::filesystem::path& path) {
   throw std::runtime_error(path.string() + ": cannot write: " + what);
 }
 
+std::mutex protected_mutex;
+std::vector<std::filesystem::path> protected_files;  // as given; compared by identity (inode)
+
+void refuse_protected(const std::filesystem::path& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return;
+  const std::lock_guard lock(protected_mutex);
+  for (const std::filesystem::path& input : protected_files)
+    if (std::filesystem::equivalent(path, input, error))
+      fail(path, "it is the input file " + input.string() +
+                     ", which is never overwritten; choose another name");
+}
+
 }  // namespace
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
@@ -39,6 +54,7 @@ void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& write) {
   if (path.empty()) fail(path, "empty file name");
   if (std::filesystem::is_directory(path)) fail(path, "it is a directory");
+  refuse_protected(path);
   const std::filesystem::path temporary = temporary_sibling(path);
   try {
     {
@@ -62,6 +78,14 @@ void write_file_atomically(const std::filesystem::path& path,
     std::filesystem::remove(temporary, ignored);
     throw;
   }
+}
+
+void protect_input_file(const std::filesystem::path& path) {
+  const std::lock_guard lock(protected_mutex);
+  std::error_code error;
+  for (const std::filesystem::path& input : protected_files)
+    if (input == path || std::filesystem::equivalent(path, input, error)) return;
+  protected_files.push_back(path);
 }
 
 std::string read_file(const std::filesystem::path& path) {

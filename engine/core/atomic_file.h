@@ -10,7 +10,8 @@
 
 namespace garment {
 
-// Writes `contents` to `path` atomically. Throws std::runtime_error naming the path on failure.
+// Writes `contents` to `path` atomically. Throws std::runtime_error naming the path on failure,
+// and when `path` is a protected input (see protect_input_file).
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents);
 
 // Streams into `path` atomically: `write` fills the stream; if it throws, nothing is replaced.
@@ -19,5 +20,10 @@ void write_file_atomically(const std::filesystem::path& path,
 
 // Reads a whole file; throws InputError naming the path when it cannot be read.
 std::string read_file(const std::filesystem::path& path);
+
+// Marks a file the user opened as input (load_pattern marks the pattern): for the rest of the
+// process, write_file_atomically refuses to replace it (or another name of the same file), so that
+// no export, report or snapshot can overwrite the user's pattern.
+void protect_input_file(const std::filesystem::path& path);
 
 }  // namespace garment

@@ -1,9 +1,9 @@
 // GarmentCode JSON import with validation. Rejected, each with the file and the place:
-// invalid or truncated JSON (line, column), nesting deeper than kMaxNesting, missing or wrongly
-// typed keys, non-finite numbers, unknown curvature types, dangling panel/edge references in
-// stitches, vertex indices out of range, edges that do not form one closed loop, an edge in two
-// stitches, a stitch of an edge with itself, zero-length edges, self-intersecting outlines, an
-// empty pattern.
+// invalid or truncated JSON (line, column), nesting deeper than kMaxNesting, a key twice in one
+// object, missing or wrongly typed keys, non-finite numbers, coordinates beyond 10 km, unknown
+// curvature types, dangling panel/edge references in stitches, vertex indices out of range, edges
+// that do not form one closed loop, an edge in two stitches, a stitch of an edge with itself,
+// zero-length edges, self-intersecting outlines, an empty pattern.
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +15,7 @@
 #include <numbers>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
@@ -29,6 +30,10 @@ using Json = nlohmann::json;
 // Real specifications nest 6 levels deep; anything far deeper is not a pattern and would only cost
 // stack in the parser.
 constexpr int kMaxNesting = 64;
+
+// No garment piece reaches 10 km: beyond this a coordinate (after the unit conversion) is a wrong
+// unit or a corrupt number, and squaring it in areas and lengths would overflow.
+constexpr double kMaxCoordinateMetres = 1e4;
 
 class Reader {
  public:
@@ -83,6 +88,17 @@ class Reader {
   std::string source_;
 };
 
+// Throws unless both coordinates (metres) stay within kMaxCoordinateMetres.
+void check_extent(const Eigen::Vector2d& metres, const std::string& place, const std::string& what,
+                  const Reader& reader) {
+  if (!(metres.cwiseAbs().maxCoeff() <= kMaxCoordinateMetres)) {
+    std::ostringstream text;
+    text << what << " lies " << metres.norm() << " m from the panel origin, beyond "
+         << kMaxCoordinateMetres / 1000 << " km (check the numbers and \"units_in_meter\")";
+    reader.fail(place, text.str());
+  }
+}
+
 std::pair<int, int> line_and_column(const std::string& text, std::size_t byte) {
   int line = 1, column = 1;
   for (std::size_t i = 0; i < std::min(byte, text.size()); ++i) {
@@ -124,11 +140,87 @@ void check_nesting(const std::string& text, const Reader& reader) {
   }
 }
 
+// JSON allows a key twice in one object and nlohmann keeps the last value, which would silently
+// drop a panel defined twice. This SAX handler builds the document as Json::parse does and refuses
+// a duplicate key, naming the object (e.g. "pattern.panels"). (Json::parse's callback form would
+// do too, but it rescans the parent container after every value: quadratic on large files.)
+class NoDuplicateKeys {
+ public:
+  NoDuplicateKeys(Json& result, const Reader& reader) : dom_(result, true), reader_(reader) {}
+
+  bool null() { return scalar(dom_.null()); }
+  bool boolean(bool value) { return scalar(dom_.boolean(value)); }
+  bool number_integer(Json::number_integer_t value) { return scalar(dom_.number_integer(value)); }
+  bool number_unsigned(Json::number_unsigned_t value) {
+    return scalar(dom_.number_unsigned(value));
+  }
+  bool number_float(Json::number_float_t value, const Json::string_t& text) {
+    return scalar(dom_.number_float(value, text));
+  }
+  bool string(Json::string_t& value) { return scalar(dom_.string(value)); }
+  bool binary(Json::binary_t& value) { return scalar(dom_.binary(value)); }
+  bool start_object(std::size_t size) {
+    open();
+    return dom_.start_object(size);
+  }
+  bool key(Json::string_t& key) {
+    if (!levels_.empty() && !levels_.back().keys.insert(key).second)
+      reader_.fail(path(), "the key '" + key + "' appears twice");
+    pending_key_ = key;
+    return dom_.key(key);
+  }
+  bool end_object() {
+    levels_.pop_back();
+    return dom_.end_object();
+  }
+  bool start_array(std::size_t size) {
+    open();
+    return dom_.start_array(size);
+  }
+  bool end_array() {
+    levels_.pop_back();
+    return dom_.end_array();
+  }
+  template <class Exception>
+  bool parse_error(std::size_t position, const std::string& token, const Exception& error) {
+    return dom_.parse_error(position, token, error);
+  }
+
+ private:
+  struct Level {
+    std::string name;  // the key this object or array is the value of, "[]" in an array
+    std::set<std::string> keys;
+  };
+
+  bool scalar(bool result) {
+    pending_key_.clear();
+    return result;
+  }
+  void open() {
+    levels_.push_back({pending_key_.empty() ? "[]" : pending_key_, {}});
+    pending_key_.clear();
+  }
+  std::string path() const {
+    std::string path;
+    for (std::size_t i = 1; i < levels_.size(); ++i)
+      path += (path.empty() || levels_[i].name == "[]" ? "" : ".") + levels_[i].name;
+    return path.empty() ? std::string("top level") : path;
+  }
+
+  nlohmann::detail::json_sax_dom_parser<Json> dom_;
+  const Reader& reader_;
+  std::vector<Level> levels_;
+  std::string pending_key_;
+};
+
 Json parse_json(const std::string& text, const Reader& reader) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) reader.fail("", "the file is empty");
   check_nesting(text, reader);
   try {
-    return Json::parse(text);
+    Json root;
+    NoDuplicateKeys handler(root, reader);
+    Json::sax_parse(text, &handler);
+    return root;
   } catch (const Json::parse_error& error) {
     const auto [line, column] = line_and_column(text, error.byte > 0 ? error.byte - 1 : 0);
     std::string reason = error.what();
@@ -182,7 +274,9 @@ PanelEdge read_edge(const Json& json, const Panel& panel, int edge_index, double
   const Eigen::Vector2d perpendicular(-chord.y(), chord.x());
   const auto relative_point = [&](const Json& value) {
     const Eigen::Vector2d ts = reader.point(value, place, "a curvature control point [t, s]");
-    return Eigen::Vector2d(start + ts.x() * chord + ts.y() * perpendicular);
+    const Eigen::Vector2d control = start + ts.x() * chord + ts.y() * perpendicular;
+    check_extent(control, place, "a curvature control point", reader);
+    return control;
   };
   if (curvature
           .is_array()) {  // Garment-Pattern-Generator's older form: one quadratic control [t, s]
@@ -209,6 +303,12 @@ PanelEdge read_edge(const Json& json, const Panel& panel, int edge_index, double
     if (params.size() != 3) reader.fail(place, "circle curvature needs [radius, large_arc, right]");
     edge.kind = CurveKind::Circle;
     edge.radius = reader.number(params[0], place, "circle radius") * scale;
+    if (!(edge.radius <= kMaxCoordinateMetres)) {
+      std::ostringstream text;
+      text << "circle radius " << edge.radius << " m is beyond " << kMaxCoordinateMetres / 1000
+           << " km (check the numbers and \"units_in_meter\")";
+      reader.fail(place, text.str());
+    }
     if (!(edge.radius > 0.0)) reader.fail(place, "circle radius must be positive");
     edge.large_arc = reader.number(params[1], place, "circle large_arc flag") != 0.0;
     edge.right = reader.number(params[2], place, "circle right flag") != 0.0;
@@ -227,9 +327,11 @@ Panel read_panel(const std::string& name, const Json& json, double scale, const 
   const Json& vertices = reader.member(json, "vertices", place);
   if (!vertices.is_array()) reader.fail(place, "\"vertices\" must be an array");
   if (vertices.size() < 2) reader.fail(place, "a panel needs at least two vertices");
-  for (std::size_t i = 0; i < vertices.size(); ++i)
-    panel.vertices.push_back(
-        scale * reader.point(vertices[i], place + ", vertex " + std::to_string(i), "a vertex"));
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const std::string vertex_place = place + ", vertex " + std::to_string(i);
+    panel.vertices.push_back(scale * reader.point(vertices[i], vertex_place, "a vertex"));
+    check_extent(panel.vertices.back(), vertex_place, "the vertex", reader);
+  }
   const Json& edges = reader.member(json, "edges", place);
   if (!edges.is_array()) reader.fail(place, "\"edges\" must be an array");
   if (edges.size() < 2) reader.fail(place, "a panel outline needs at least two edges");
@@ -254,14 +356,16 @@ Panel read_panel(const std::string& name, const Json& json, double scale, const 
   return panel;
 }
 
-EdgeRef read_stitch_side(const Json& json, const Pattern& pattern, const std::string& place,
+EdgeRef read_stitch_side(const Json& json, const Pattern& pattern,
+                         const std::map<std::string, int>& panel_of_name, const std::string& place,
                          const Reader& reader) {
   if (!json.is_object())
     reader.fail(place, "a stitch side must be an object {\"panel\", \"edge\"}");
   const Json& panel_name = reader.member(json, "panel", place);
   if (!panel_name.is_string()) reader.fail(place, "\"panel\" must be a panel name");
   EdgeRef side;
-  side.panel = pattern.panel_index(panel_name.get<std::string>());
+  const auto found = panel_of_name.find(panel_name.get<std::string>());
+  side.panel = found == panel_of_name.end() ? -1 : found->second;
   if (side.panel < 0)
     reader.fail(place, "panel '" + panel_name.get<std::string>() + "' does not exist");
   side.edge = reader.index(reader.member(json, "edge", place), place, "\"edge\"");
@@ -317,6 +421,7 @@ Pattern parse_pattern(const std::string& json_text, const std::string& source) {
   if (panels.empty()) reader.fail("pattern", "the pattern has no panels");
 
   std::vector<std::string> order;
+  std::set<std::string> ordered;  // the names in `order`
   if (const auto panel_order = body.find("panel_order"); panel_order != body.end()) {
     if (!panel_order->is_array())
       reader.fail("pattern", "\"panel_order\" must be an array of names");
@@ -325,19 +430,22 @@ Pattern parse_pattern(const std::string& json_text, const std::string& source) {
       if (!panels.contains(name.get<std::string>()))
         reader.fail("pattern", "\"panel_order\" names panel '" + name.get<std::string>() +
                                    "', which does not exist");
-      if (std::find(order.begin(), order.end(), name.get<std::string>()) != order.end())
+      if (!ordered.insert(name.get<std::string>()).second)
         reader.fail("pattern",
                     "\"panel_order\" names panel '" + name.get<std::string>() + "' twice");
       order.push_back(name.get<std::string>());
     }
   }
   for (const auto& [name, value] : panels.items())
-    if (std::find(order.begin(), order.end(), name) == order.end()) order.push_back(name);
+    if (!ordered.count(name)) order.push_back(name);
   for (const std::string& name : order)
     pattern.panels.push_back(read_panel(name, panels[name], scale, reader));
 
   const Json& stitches = reader.member(body, "stitches", "pattern");
   if (!stitches.is_array()) reader.fail("pattern", "\"stitches\" must be an array");
+  std::map<std::string, int> panel_of_name;
+  for (std::size_t p = 0; p < pattern.panels.size(); ++p)
+    panel_of_name.emplace(pattern.panels[p].name, static_cast<int>(p));
   std::map<std::pair<int, int>, int> stitch_of_edge;
   for (std::size_t s = 0; s < stitches.size(); ++s) {
     const std::string place = "stitch " + std::to_string(s);
@@ -348,8 +456,8 @@ Pattern parse_pattern(const std::string& json_text, const std::string& source) {
           "a stitch must be [{panel, edge}, {panel, edge}] with an optional \"right_wrong\"");
     Stitch stitch;
     stitch.file_index = static_cast<int>(s);
-    stitch.a = read_stitch_side(json[0], pattern, place + " side 0", reader);
-    stitch.b = read_stitch_side(json[1], pattern, place + " side 1", reader);
+    stitch.a = read_stitch_side(json[0], pattern, panel_of_name, place + " side 0", reader);
+    stitch.b = read_stitch_side(json[1], pattern, panel_of_name, place + " side 1", reader);
     if (json.size() == 3) {
       if (!json[2].is_string() || json[2].get<std::string>() != "right_wrong")
         reader.fail(place, "the third element of a stitch can only be \"right_wrong\"");
@@ -375,7 +483,9 @@ Pattern parse_pattern(const std::string& json_text, const std::string& source) {
 }
 
 Pattern load_pattern(const std::filesystem::path& path) {
-  return parse_pattern(read_file(path), path.string());
+  Pattern pattern = parse_pattern(read_file(path), path.string());
+  protect_input_file(path);
+  return pattern;
 }
 
 }  // namespace garment
