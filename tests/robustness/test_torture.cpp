@@ -472,7 +472,7 @@ std::vector<Case> cases() {
                }
                text += "f";
                for (int i = 1; i <= 1000000; ++i)
-                 text += " " + std::to_string(i);
+                 text.append(" ").append(std::to_string(i));
                return text + "\n";
              },
              {"line 1000001", "degenerate face"});
@@ -480,7 +480,7 @@ std::vector<Case> cases() {
              [] {
                std::string text = cube_obj(1.0) + "f";
                for (int i = 0; i < 1000000; ++i)
-                 text += " " + std::to_string(1 + i % 8);
+                 text.append(" ").append(std::to_string(1 + i % 8));
                return text + "\n";
              },
              {"line 15", "appears twice"});
