@@ -210,6 +210,9 @@ class StudioSessionTest : public QObject {
     if (frame_ms > 25.0)
       QSKIP(qPrintable(
           QString("one frame takes %1 ms to draw here; the target needs < 25 ms").arg(frame_ms)));
+    // Under the sanitizers every call is several times slower: latency is judged in Release.
+    if (qEnvironmentVariableIntValue("GARMENT_TEST_TIME_SCALE") > 1)
+      QSKIP("a sanitizer build: the latency is asserted in the Release run");
     QVERIFY2(probe.maxDelayMs() < 50.0, qPrintable(QString::number(probe.maxDelayMs())));
   }
 
