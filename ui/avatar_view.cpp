@@ -112,11 +112,13 @@ void AvatarView::releaseGL() {
   outline_first_.clear();
   marker_vao_.destroy();
   marker_buffer_.destroy();
+  body_layer_.reset();
   rendering_available_ = false;
 }
 
 void AvatarView::setColours(const Colours& colours) {
   colours_ = colours;
+  body_layer_dirty_ = true;
   update();
 }
 
@@ -286,6 +288,7 @@ void AvatarView::uploadPending() {
   if (body_dirty_) {
     if (body_) uploadMesh(body_mesh_, body_->vertices, body_->triangles, false);
     body_dirty_ = false;
+    body_layer_dirty_ = true;
   }
   if (garment_topology_dirty_ || positions_dirty_) {
     if (garmentShown()) {
@@ -333,23 +336,70 @@ void AvatarView::paintGL() {
     return;
   }
   uploadPending();
-  glClearColor(background.x(), background.y(), background.z(), 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  drawScene(projectionMatrix(), viewMatrix());
+  const QMatrix4x4 projection = projectionMatrix(), view = viewMatrix();
+  if (!copyBodyLayer(projection, view)) {
+    glClearColor(background.x(), background.y(), background.z(), 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    drawBody(projection, view);
+  }
+  drawGarmentAndMarkers(projection, view);
 }
 
-void AvatarView::drawScene(const QMatrix4x4& projection, const QMatrix4x4& view) {
+bool AvatarView::copyBodyLayer(const QMatrix4x4& projection, const QMatrix4x4& view) {
+  if (!body_layer_supported_) return false;
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  // Qt sets the viewport to the widget's framebuffer before paintGL.
+  GLint viewport[4] = {0, 0, 0, 0};
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  const QSize pixels(viewport[2], viewport[3]);
+  if (!body_layer_ || body_layer_->size() != pixels) {
+    QOpenGLFramebufferObjectFormat layer_format;
+    layer_format.setAttachment(QOpenGLFramebufferObject::CombinedDepthStencil);
+    // A blit into a multisampled framebuffer needs a source with the same sample count.
+    layer_format.setSamples(format().samples());
+    body_layer_ = std::make_unique<QOpenGLFramebufferObject>(pixels, layer_format);
+    body_layer_dirty_ = true;
+  }
+  if (body_layer_dirty_ || body_layer_view_ != view || body_layer_projection_ != projection) {
+    body_layer_->bind();
+    const QVector3D background = colour_vector(colours_.background);
+    glClearColor(background.x(), background.y(), background.z(), 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    drawBody(projection, view);
+    body_layer_view_ = view;
+    body_layer_projection_ = projection;
+    body_layer_dirty_ = false;
+  }
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, body_layer_->handle());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, defaultFramebufferObject());
+  glBlitFramebuffer(0, 0, pixels.width(), pixels.height(), 0, 0, pixels.width(), pixels.height(),
+                    GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
+  if (glGetError() == GL_NO_ERROR) return true;
+  // A driver that cannot copy between the two framebuffers: the body is drawn every frame.
+  qWarning("avatar view: cannot copy the cached body layer; drawing the body every frame");
+  body_layer_supported_ = false;
+  body_layer_.reset();
+  return false;
+}
+
+void AvatarView::drawBody(const QMatrix4x4& projection, const QMatrix4x4& view) {
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  if (body_ && body_mesh_.index_count > 0) {
-    body_program_->bind();
-    body_program_->setUniformValue("model_view", view);
-    body_program_->setUniformValue("projection", projection);
-    body_program_->setUniformValue("base_colour", colour_vector(colours_.body));
-    body_mesh_.vao.bind();
-    glDrawElements(GL_TRIANGLES, body_mesh_.index_count, GL_UNSIGNED_INT, nullptr);
-    body_mesh_.vao.release();
-  }
+  if (!body_ || body_mesh_.index_count == 0) return;
+  body_program_->bind();
+  body_program_->setUniformValue("model_view", view);
+  body_program_->setUniformValue("projection", projection);
+  body_program_->setUniformValue("base_colour", colour_vector(colours_.body));
+  body_mesh_.vao.bind();
+  glDrawElements(GL_TRIANGLES, body_mesh_.index_count, GL_UNSIGNED_INT, nullptr);
+  body_mesh_.vao.release();
+}
+
+void AvatarView::drawGarmentAndMarkers(const QMatrix4x4& projection, const QMatrix4x4& view) {
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
   if (garmentShown() && garment_mesh_.index_count > 0) {
     garment_program_->bind();
     garment_program_->setUniformValue("model_view", view);

@@ -24,6 +24,7 @@
 #include "engine/pattern/garment_mesh.h"
 #include "ui/body_location_marker.h"
 
+class QOpenGLFramebufferObject;
 class QOpenGLShaderProgram;
 
 namespace garment::ui {
@@ -111,7 +112,11 @@ class AvatarView : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
                   const Eigen::MatrixX3i& triangles, bool positions_only);
   void uploadOutlines();
   void uploadMarkers();
-  void drawScene(const QMatrix4x4& projection, const QMatrix4x4& view);
+  // Copies the cached body layer into the widget's framebuffer, drawing the layer first when the
+  // body, the camera or the size changed; false when the driver cannot (the caller draws the body).
+  bool copyBodyLayer(const QMatrix4x4& projection, const QMatrix4x4& view);
+  void drawBody(const QMatrix4x4& projection, const QMatrix4x4& view);
+  void drawGarmentAndMarkers(const QMatrix4x4& projection, const QMatrix4x4& view);
   void drawForPicking(const QMatrix4x4& projection, const QMatrix4x4& view);
   bool pieceVisible(int piece) const;
   QMatrix4x4 viewMatrix() const;
@@ -136,6 +141,12 @@ class AvatarView : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   std::unique_ptr<QOpenGLShaderProgram> body_program_, garment_program_, marker_program_,
       pick_program_;
   GpuMesh body_mesh_, garment_mesh_;
+  // The body does not move while the garment does: it is drawn once per camera into this layer
+  // (colour and depth), and each frame starts from a copy of it. With a software rasteriser the
+  // body's ~50k triangles were most of a live frame, all of it on the GUI thread.
+  std::unique_ptr<QOpenGLFramebufferObject> body_layer_;
+  QMatrix4x4 body_layer_view_, body_layer_projection_;
+  bool body_layer_dirty_ = true, body_layer_supported_ = true;
   // Piece outlines as line loops over the garment's vertex buffer, drawn for selected pieces.
   QOpenGLVertexArrayObject outline_vao_;
   QOpenGLBuffer outline_indices_{QOpenGLBuffer::IndexBuffer};

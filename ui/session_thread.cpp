@@ -6,6 +6,11 @@
 #include <QMutexLocker>
 #include <algorithm>
 #include <exception>
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
 
 #include "engine/core/atomic_file.h"
 #include "engine/io/garment_obj.h"
@@ -15,6 +20,10 @@
 #include "engine/quality/verdict.h"
 
 namespace garment::ui {
+
+#ifdef __linux__
+constexpr int kWorkerNiceness = 10;
+#endif
 
 // Runs on the worker: forwards live snapshots to the GUI and polls the interrupt flag.
 class SessionThread::Observer : public SessionObserver {
@@ -137,6 +146,11 @@ bool SessionThread::wantsToStep() const {
 }
 
 void SessionThread::run() {
+#ifdef __linux__
+  // The solve yields the processor to the GUI thread (and the OpenGL rasteriser's threads) when
+  // they compete for it; Linux sets a nice value per thread.
+  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kWorkerNiceness);
+#endif
   Observer observer(*this);
   for (;;) {
     std::deque<Command> commands;
