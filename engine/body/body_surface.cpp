@@ -12,6 +12,7 @@
 #include <numeric>
 #include <utility>
 
+#include "engine/body/row_crossing.h"
 #include "engine/body/triangle_distance.h"
 
 namespace garment {
@@ -157,37 +158,10 @@ BodySurface::BodySurface(const BodyMesh& body, const Eigen::Vector3d& origin, do
                     });
 }
 
-// The row through (y, z) along x crosses the triangle at `x`, entering (+1) or leaving (−1).
-// Edge functions are evaluated per mesh edge in one canonical direction and exact zeros are
-// broken by a symbolic perturbation of the row, as in the grid's inside test, so that a row
-// through a shared edge or vertex is counted once.
 bool BodySurface::row_crossing(int triangle, double y, double z, double& x, int& direction) const {
-  const int ids[3] = {triangle_vertices_(triangle, 0), triangle_vertices_(triangle, 1),
-                      triangle_vertices_(triangle, 2)};
-  const auto& v = vertices_;
-  double edge_value[3];
-  int edge_sign[3];
-  for (int e = 0; e < 3; ++e) {
-    const int from = ids[e], to = ids[(e + 1) % 3];
-    const int low = std::min(from, to), high = std::max(from, to);
-    const double dy = v(high, 1) - v(low, 1), dz = v(high, 2) - v(low, 2);
-    double value = dy * (z - v(low, 2)) - dz * (y - v(low, 1));
-    int sign = value > 0.0   ? 1
-               : value < 0.0 ? -1
-                             : (dz != 0.0 ? (dz < 0.0 ? 1 : -1) : (dy > 0.0 ? 1 : -1));
-    if (from != low) value = -value, sign = -sign;
-    edge_value[e] = value;
-    edge_sign[e] = sign;
-  }
-  if (edge_sign[0] != edge_sign[1] || edge_sign[1] != edge_sign[2]) return false;
-  const double total = edge_value[0] + edge_value[1] + edge_value[2];
-  x = v(ids[0], 0);
-  if (total != 0.0)
-    x = (edge_value[1] * v(ids[0], 0) + edge_value[2] * v(ids[1], 0) +
-         edge_value[0] * v(ids[2], 0)) /
-        total;
-  direction = -edge_sign[0];
-  return true;
+  const int corners[3] = {triangle_vertices_(triangle, 0), triangle_vertices_(triangle, 1),
+                          triangle_vertices_(triangle, 2)};
+  return garment::row_crossing(vertices_, corners, y, z, x, direction);
 }
 
 int BodySurface::winding_number(const Eigen::Vector3d& point) const {

@@ -15,6 +15,7 @@
 
 #include "engine/body/body_surface.h"
 #include "engine/body/distance_grid_cache.h"
+#include "engine/body/row_crossing.h"
 #include "engine/body/triangle_distance.h"
 #include "engine/core/error.h"
 
@@ -201,9 +202,7 @@ ClosestTriangles closest_triangles(const Lattice& grid,
 // Inside = winding number ≥ 1, counted along +x rays through the sample rows: every triangle
 // whose (y, z) projection covers a row crosses it once, entering (+1) where its normal faces −x.
 // Overlapping parts of a self-intersecting body (thighs pressed together, armpits, lips) have
-// winding 2 and count as inside: the body is the union of its parts. Edge functions are
-// evaluated per mesh edge in one canonical direction, and exact zeros are broken by a symbolic
-// perturbation of the row, so that a row through a shared edge or vertex is counted once.
+// winding 2 and count as inside: the body is the union of its parts.
 std::vector<std::uint8_t> inside_samples(const Lattice& grid, const BodyMesh& body) {
   struct Crossing {
     double x;
@@ -230,30 +229,10 @@ std::vector<std::uint8_t> inside_samples(const Lattice& grid, const BodyMesh& bo
       for (int j = j0; j <= j1; ++j) {
         const double y = grid.origin.y() + j * grid.spacing;
         const double z = grid.origin.z() + k * grid.spacing;
-        double edge_value[3];
-        int edge_sign[3];
-        for (int e = 0; e < 3; ++e) {
-          const int from = ids[e], to = ids[(e + 1) % 3];
-          const int low = std::min(from, to), high = std::max(from, to);
-          const double dy = v(high, 1) - v(low, 1), dz = v(high, 2) - v(low, 2);
-          double value = dy * (z - v(low, 2)) - dz * (y - v(low, 1));
-          // The row moved by (ε, ε²) in (y, z): value gains dy·ε² − dz·ε.
-          int sign = value > 0.0   ? 1
-                     : value < 0.0 ? -1
-                                   : (dz != 0.0 ? (dz < 0.0 ? 1 : -1) : (dy > 0.0 ? 1 : -1));
-          if (from != low) value = -value, sign = -sign;
-          edge_value[e] = value;
-          edge_sign[e] = sign;
-        }
-        if (edge_sign[0] != edge_sign[1] || edge_sign[1] != edge_sign[2]) continue;
-        const double total = edge_value[0] + edge_value[1] + edge_value[2];
-        // Barycentric weight of a corner = edge value of the opposite edge / total.
-        double x = v(ids[0], 0);
-        if (total != 0.0)
-          x = (edge_value[1] * v(ids[0], 0) + edge_value[2] * v(ids[1], 0) +
-               edge_value[0] * v(ids[2], 0)) /
-              total;
-        rows[static_cast<std::size_t>(k) * grid.ny + j].push_back({x, -edge_sign[0]});
+        double x = 0.0;
+        int direction = 0;
+        if (row_crossing(v, ids, y, z, x, direction))
+          rows[static_cast<std::size_t>(k) * grid.ny + j].push_back({x, direction});
       }
   }
   std::vector<std::uint8_t> inside(grid.count(), 0);
