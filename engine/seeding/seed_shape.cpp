@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include "engine/core/error.h"
 #include "engine/energy/bending_potential.h"
@@ -155,6 +157,122 @@ double front_score(const Scene& scene, int piece, const std::vector<int>& part) 
   return score;
 }
 
+// An ellipse x(θ) = a sinθ · across + b cosθ · normal around a torso, walked by arc length: front
+// and back chest parts wrap round it so that their side seams start next to each other, under
+// the arms, instead of a torso's depth apart on two planes (their seams would then pull the
+// armpit corners through the arms).
+class EllipseArc {
+ public:
+  EllipseArc(double a, double b) : a_(a), b_(b) {
+    angle_.resize(kSteps + 1);
+    length_.resize(kSteps + 1);
+    for (int i = 0; i <= kSteps; ++i) {
+      angle_[i] = std::numbers::pi * i / kSteps;  // one half; the other mirrors it
+      length_[i] = i == 0 ? 0.0 : length_[i - 1] + (point(angle_[i]) - point(angle_[i - 1])).norm();
+    }
+  }
+  double perimeter() const { return 2.0 * length_.back(); }
+  // The angle reached after walking `arc` from θ = 0 (negative: the other way), |arc| ≤ half the
+  // perimeter.
+  double angle_at(double arc) const {
+    const double walked = std::min(std::abs(arc), length_.back());
+    const auto after = std::lower_bound(length_.begin(), length_.end(), walked);
+    const std::size_t i = std::clamp<std::size_t>(after - length_.begin(), 1, kSteps);
+    const double t = (walked - length_[i - 1]) / std::max(1e-12, length_[i] - length_[i - 1]);
+    return std::copysign(angle_[i - 1] + t * (angle_[i] - angle_[i - 1]), arc);
+  }
+  // (across, normal) coordinates of the point at angle θ.
+  Eigen::Vector2d point(double angle) const { return {a_ * std::sin(angle), b_ * std::cos(angle)}; }
+
+ private:
+  static constexpr int kSteps = 720;
+  double a_, b_;
+  std::vector<double> angle_, length_;
+};
+
+// Where a laid-out part's side seams to the opposite part are, from the seams that run up the
+// pattern, each taken at the mean of its vertices on this part (layout coordinates): the leftmost
+// and rightmost across, and their mean height. Empty without one on each side.
+struct SideSeams {
+  double left = 0.0, right = 0.0, height = 0.0;
+};
+
+std::optional<SideSeams> side_seams(const Garment& garment, const PartLayout& layout,
+                                    const std::vector<int>& opposite_pieces) {
+  const auto offset_of = [&](int piece) -> const Eigen::Vector2d* {
+    for (std::size_t i = 0; i < layout.pieces.size(); ++i)
+      if (layout.pieces[i] == piece) return &layout.offsets[i];
+    return nullptr;
+  };
+  SideSeams seams{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                  0.0};
+  int count = 0;
+  for (const StitchPairs& stitch : garment.stitches) {
+    if (stitch.pair_count < 2) continue;
+    for (int side = 0; side < 2; ++side) {
+      const int first = garment.sewing_pairs(stitch.first_pair, side);
+      const int other = garment.sewing_pairs(stitch.first_pair, 1 - side);
+      const Eigen::Vector2d* offset = offset_of(garment.vertex_piece(first));
+      if (!offset || std::find(opposite_pieces.begin(), opposite_pieces.end(),
+                               garment.vertex_piece(other)) == opposite_pieces.end())
+        continue;
+      const int last = garment.sewing_pairs(stitch.first_pair + stitch.pair_count - 1, side);
+      const Eigen::Vector2d run =
+          garment.rest_positions.row(last) - garment.rest_positions.row(first);
+      if (std::abs(run.y()) < std::abs(run.x())) continue;  // a shoulder seam
+      Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+      for (int k = stitch.first_pair; k < stitch.first_pair + stitch.pair_count; ++k)
+        mean += garment.rest_positions.row(garment.sewing_pairs(k, side)).transpose();
+      mean = mean / stitch.pair_count + *offset;
+      seams.left = std::min(seams.left, mean.x());
+      seams.right = std::max(seams.right, mean.x());
+      seams.height += mean.y();
+      ++count;
+    }
+  }
+  if (count < 2 || !(seams.right > seams.left)) return std::nullopt;
+  seams.height /= count;
+  return seams;
+}
+
+// The mean of a laid-out part's vertices (layout coordinates): the centring potential pulls it to
+// the location's centre.
+Eigen::Vector2d vertex_mean(const Garment& garment, const PartLayout& layout) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  int count = 0;
+  for (std::size_t i = 0; i < layout.pieces.size(); ++i) {
+    const Piece& piece = garment.pieces[layout.pieces[i]];
+    sum += garment.rest_positions.middleRows(piece.first_vertex, piece.vertex_count)
+               .colwise()
+               .sum()
+               .transpose() +
+           piece.vertex_count * layout.offsets[i];
+    count += piece.vertex_count;
+  }
+  return sum / std::max(1, count);
+}
+// The part on the opposite plane (front ↔ back), sewn to this one, or nullptr.
+const SeedPart* opposite_part(const Scene& scene, const SeedPlan& plan, const SeedPart& part) {
+  const BodyLocation& location = scene.body->location(part.location);
+  for (const SeedPart& other : plan.parts) {
+    if (&other == &part) continue;
+    const BodyLocation& candidate = scene.body->location(other.location);
+    if (candidate.surface != LocationSurface::plane ||
+        candidate.axis.normalized().dot(location.axis.normalized()) > -0.9)
+      continue;
+    for (Eigen::Index k = 0; k < scene.garment->sewing_pairs.rows(); ++k) {
+      const int a = scene.garment->vertex_piece(scene.garment->sewing_pairs(k, 0));
+      const int b = scene.garment->vertex_piece(scene.garment->sewing_pairs(k, 1));
+      const auto in = [](const std::vector<int>& pieces, int piece) {
+        return std::find(pieces.begin(), pieces.end(), piece) != pieces.end();
+      };
+      if ((in(part.pieces, a) && in(other.pieces, b)) ||
+          (in(part.pieces, b) && in(other.pieces, a)))
+        return &other;
+    }
+  }
+  return nullptr;
+}
 }  // namespace
 
 void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double distance,
@@ -206,15 +324,67 @@ void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double dis
     } else {
       // On the plane, `distance` in front of it, upright: rest y along the location's up, rest x
       // along up × normal, so the outside faces along the normal.
+      // The part's centre (the mean of its vertices, which the centring potential pulls to the
+      // location) starts on the location's centre: a bodice narrowing to its shoulder straps has it
+      // well below the middle of its bounding box.
       const Eigen::Vector3d up = location->up.normalized();
       const Eigen::Vector3d across = up.cross(axis);
+      const Eigen::Vector2d centre = vertex_mean(garment, layout);
+      const SeedPart* opposite = opposite_part(scene, plan, part);
+      if (!opposite) {
+        for (std::size_t i = 0; i < layout.pieces.size(); ++i) {
+          const Piece& piece = garment.pieces[layout.pieces[i]];
+          for (int v = piece.first_vertex; v < piece.first_vertex + piece.vertex_count; ++v) {
+            const Eigen::Vector2d laid =
+                garment.rest_positions.row(v).transpose() + layout.offsets[i] - centre;
+            positions.row(v) =
+                (location->center + distance * axis + laid.x() * across + laid.y() * up)
+                    .transpose();
+          }
+        }
+        continue;
+      }
+      // Front and back sewn together: both wrap round one ellipse through the two planes' centres,
+      // as wide as the torso, each centred between its side seams so that these meet at the sides.
+      // A garment wider than the ellipse deepens it (ease in front and behind, not under the
+      // arms); a narrower one starts stretched round it, as a ring does.
+      const BodyLocation& other = scene.body->location(opposite->location);
+      const double half_gap = 0.5 * (location->center - other.center).dot(axis);
+      const Eigen::Vector3d ellipse_centre = location->center - half_gap * axis;
+      const double half_width = std::max(location->half_width, other.half_width) + distance;
+      const PartLayout opposite_layout = lay_out_part(garment, opposite->pieces);
+      double garment_round = layout.box.size().x() + opposite_layout.box.size().x();
+      double middle = centre.x(), lift = 0.0;
+      const std::optional<SideSeams> seams = side_seams(garment, layout, opposite->pieces);
+      const std::optional<SideSeams> opposite_seams =
+          side_seams(garment, opposite_layout, part.pieces);
+      if (seams && opposite_seams) {
+        garment_round =
+            (seams->right - seams->left) + (opposite_seams->right - opposite_seams->left);
+        middle = 0.5 * (seams->left + seams->right);
+        // Both parts' side seams at the same height: halfway between where each part's centring
+        // alone would put them.
+        const double here = location->center.dot(up) + seams->height - centre.y();
+        const double there = other.center.dot(up) + opposite_seams->height -
+                             vertex_mean(garment, opposite_layout).y();
+        lift = 0.5 * (there - here);
+      }
+      double half_depth = half_gap + distance;
+      for (int i = 0; i < 100 && EllipseArc(half_width, half_depth).perimeter() < garment_round;
+           ++i)
+        half_depth *= 1.02;
+      const EllipseArc ellipse(half_width, half_depth);
+      const double arc_scale = std::max(1.0, ellipse.perimeter() / garment_round);
       for (std::size_t i = 0; i < layout.pieces.size(); ++i) {
         const Piece& piece = garment.pieces[layout.pieces[i]];
         for (int v = piece.first_vertex; v < piece.first_vertex + piece.vertex_count; ++v) {
           const Eigen::Vector2d laid =
-              garment.rest_positions.row(v).transpose() + layout.offsets[i] - layout.box.centre();
+              garment.rest_positions.row(v).transpose() + layout.offsets[i] - centre;
+          const double arc = arc_scale * (laid.x() + centre.x() - middle);
+          const Eigen::Vector2d round = ellipse.point(ellipse.angle_at(arc));
           positions.row(v) =
-              (location->center + distance * axis + laid.x() * across + laid.y() * up).transpose();
+              (ellipse_centre + round.x() * across + round.y() * axis + (laid.y() + lift) * up)
+                  .transpose();
         }
       }
     }
