@@ -36,9 +36,9 @@ SeedShapeReport shape_seed(const Scene& scene, const SeedPlan& plan, const Energ
                            const SeedShapeOptions& options = {});
 
 // Only the start: the pieces wrapped on or laid onto their locations' surfaces, no solve. A part on
-// a front plane and one on the back plane sewn to it (a bodice's front and back) wrap together round
-// the torso on one ellipse through both planes, their side seams meeting at the sides; a part on a
-// plane alone has its vertex mean on the location's centre.
+// a front plane and one on the back plane sewn to it (a bodice's front and back) wrap together
+// round the torso on one ellipse through both planes, their side seams meeting at the sides; a part
+// on a plane alone has its vertex mean on the location's centre.
 void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double distance,
                             Eigen::MatrixX3d& positions);
 
