@@ -3,7 +3,6 @@
 
 #include "ui/session_thread.h"
 
-#include <QMutexLocker>
 #include <algorithm>
 #include <exception>
 #ifdef __linux__
@@ -50,7 +49,7 @@ class SessionThread::Observer : public SessionObserver {
     update.stage_fraction = fraction_;
     update.pieces = snapshot.pieces;
     update.order = snapshot.order;
-    emit thread_.updated(update);
+    thread_.sendToGui([&thread = thread_, update] { emit thread.updated(update); });
   }
 
   bool cancel_requested() const override { return thread_.interrupt_.load(); }
@@ -64,24 +63,46 @@ class SessionThread::Observer : public SessionObserver {
 SessionThread::SessionThread(QObject* parent) : QThread(parent) {
   qRegisterMetaType<SessionUpdate>();
   qRegisterMetaType<SessionState>();
+  connect(this, &SessionThread::outboxFilled, this, &SessionThread::emptyOutbox,
+          Qt::QueuedConnection);
 }
 
 SessionThread::~SessionThread() {
   {
-    const QMutexLocker lock(&mutex_);
+    const std::lock_guard lock(mutex_);
     abort_ = true;
     interrupt_ = true;  // the phase in progress stops at its next cancellation poll
-    condition_.wakeOne();
   }
+  condition_.notify_one();
   wait();
 }
 
 void SessionThread::post(Command command, bool interrupt) {
-  const QMutexLocker lock(&mutex_);
-  commands_.push_back(std::move(command));
-  if (interrupt) interrupt_ = true;
+  {
+    const std::lock_guard lock(mutex_);
+    commands_.push_back(std::move(command));
+    if (interrupt) interrupt_ = true;
+  }
   if (!isRunning()) start();
-  condition_.wakeOne();
+  condition_.notify_one();
+}
+
+void SessionThread::sendToGui(std::function<void()> emission) {
+  {
+    const std::lock_guard lock(outbox_mutex_);
+    outbox_.push_back(std::move(emission));
+  }
+  emit outboxFilled(QPrivateSignal());
+}
+
+void SessionThread::emptyOutbox() {
+  std::deque<std::function<void()>> emissions;
+  {
+    const std::lock_guard lock(outbox_mutex_);
+    emissions.swap(outbox_);
+  }
+  for (const std::function<void()>& emission : emissions)
+    emission();
 }
 
 void SessionThread::openScene(std::shared_ptr<const Garment> garment,
@@ -155,9 +176,8 @@ void SessionThread::run() {
   for (;;) {
     std::deque<Command> commands;
     {
-      QMutexLocker lock(&mutex_);
-      while (!abort_ && commands_.empty() && !wantsToStep())
-        condition_.wait(&mutex_);
+      std::unique_lock lock(mutex_);
+      condition_.wait(lock, [this] { return abort_ || !commands_.empty() || wantsToStep(); });
       if (abort_) break;
       commands.swap(commands_);
       // Commands that interrupted the last phase are taken now; the next phase starts afresh.
@@ -279,9 +299,10 @@ void SessionThread::execute(const Command& command) {
   } catch (const std::exception& error) {
     running_ = false;
     steps_requested_ = 0;
-    emit failed(
-        command.kind == Command::Open ? tr("Cannot start the arrangement") : tr("Arrangement"),
-        QString::fromUtf8(error.what()));
+    const QString title =
+        command.kind == Command::Open ? tr("Cannot start the arrangement") : tr("Arrangement");
+    const QString message = QString::fromUtf8(error.what());
+    sendToGui([this, title, message] { emit failed(title, message); });
     if (!session_) return;
   }
   // Restores (also inside reset, reseed and reorder) drop the later checkpoints.
@@ -294,7 +315,8 @@ void SessionThread::execute(const Command& command) {
 
 void SessionThread::exportFile(ExportKind kind, const QString& path) {
   if (!session_) {
-    emit exportFinished(path, tr("nothing to export: no arrangement is open"));
+    const QString error = tr("nothing to export: no arrangement is open");
+    sendToGui([this, path, error] { emit exportFinished(path, error); });
     return;
   }
   try {
@@ -319,10 +341,11 @@ void SessionThread::exportFile(ExportKind kind, const QString& path) {
       }
     }
   } catch (const std::exception& error) {
-    emit exportFinished(path, QString::fromUtf8(error.what()));
+    const QString message = QString::fromUtf8(error.what());
+    sendToGui([this, path, message] { emit exportFinished(path, message); });
     return;
   }
-  emit exportFinished(path, {});
+  sendToGui([this, path] { emit exportFinished(path, QString()); });
 }
 
 void SessionThread::publishUpdate() {
@@ -335,7 +358,7 @@ void SessionThread::publishUpdate() {
   update.elapsed_seconds = snapshot.elapsed_seconds;
   update.pieces = snapshot.pieces;
   update.order = snapshot.order;
-  emit updated(update);
+  sendToGui([this, update] { emit updated(update); });
 }
 
 void SessionThread::publishState() {
@@ -356,7 +379,7 @@ void SessionThread::publishState() {
   state.seed = session_->options().seed ? *session_->options().seed : state.automatic_seed;
   state.history = history_;
   state.scene = scene_;
-  emit stateChanged(state);
+  sendToGui([this, state] { emit stateChanged(state); });
 }
 
 }  // namespace garment::ui

@@ -2,9 +2,15 @@
 // The arrangement session on a worker thread (DESIGN.md "Threads"), in the manner of Qt's
 // Mandelbrot example (renderthread.cpp): the GUI thread copies each command into a queue under a
 // mutex and wakes the worker; the worker alone owns and touches the engine session (and builds the
-// scene, which runs the classifier), and sends what the GUI shows by value through queued signals:
-// live snapshots during solves (throttled, at most one in flight), and the session's state after
-// every phase or command. The destructor aborts the running phase and waits for the thread.
+// scene, which runs the classifier), and sends what the GUI shows by value: live snapshots during
+// solves (throttled, at most one in flight), and the session's state after every phase or command.
+// The destructor aborts the running phase and waits for the thread.
+//
+// What the worker sends goes into an outbox under a std::mutex, and a queued signal without
+// arguments tells the GUI thread to empty it; the public signals are emitted there, on the GUI
+// thread, in the order the worker sent them. Every hand-off between the two threads is thus a
+// standard mutex, which ThreadSanitizer sees (Qt's event queue and QMutex's slow path run inside
+// the uninstrumented Qt library).
 //
 // Run steps until done or paused; Pause stops after the phase in progress; Step runs exactly one
 // phase; Stop cancels the phase in progress (the engine undoes it, so the session stays at that
@@ -12,14 +18,15 @@
 // the session. Every call returns at once and is safe only from the thread that owns the object.
 
 #include <QMetaType>
-#include <QMutex>
 #include <QString>
 #include <QStringList>
 #include <QThread>
-#include <QWaitCondition>
 #include <atomic>
+#include <condition_variable>
 #include <deque>
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -93,10 +100,13 @@ class SessionThread : public QThread {
   void acknowledgeUpdate() { update_in_flight_ = false; }
 
  signals:
+  // Emitted on the thread that owns this object (the GUI thread).
   void updated(const garment::ui::SessionUpdate& update);
   void stateChanged(const garment::ui::SessionState& state);
   void failed(const QString& title, const QString& message);
   void exportFinished(const QString& path, const QString& error);  // error empty: written
+  // From the worker: the outbox has something.
+  void outboxFilled(QPrivateSignal);
 
  protected:
   void run() override;
@@ -119,6 +129,10 @@ class SessionThread : public QThread {
   class Observer;
 
   void post(Command command, bool interrupt);
+  // Worker thread: queues one emission for the GUI thread.
+  void sendToGui(std::function<void()> emission);
+  // GUI thread: emits what the worker queued.
+  void emptyOutbox();
   bool wantsToStep() const;  // worker thread
   void execute(const Command& command);
   void stepOnce(Observer& observer);
@@ -128,10 +142,13 @@ class SessionThread : public QThread {
   QString checkpointLabel(Phase ran) const;
 
   // Shared with the GUI thread, under mutex_.
-  QMutex mutex_;
-  QWaitCondition condition_;
+  std::mutex mutex_;
+  std::condition_variable condition_;
   std::deque<Command> commands_;
   bool abort_ = false;
+  // Worker → GUI, under outbox_mutex_.
+  std::mutex outbox_mutex_;
+  std::deque<std::function<void()>> outbox_;
   // Read by the engine's cancellation polls without the mutex.
   std::atomic<bool> interrupt_{false};
   std::atomic<bool> update_in_flight_{false};
