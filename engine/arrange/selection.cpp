@@ -45,15 +45,18 @@ double Selector::score(const std::vector<bool>& arranged, const std::vector<int>
 std::vector<Candidate> Selector::candidates(const std::vector<bool>& arranged,
                                             const Eigen::MatrixX3d& positions) const {
   const int piece_count = static_cast<int>(garment_.pieces.size());
-  // Which unarranged piece each arranged vertex is sewn to (the first one found).
-  std::vector<int> sewn_candidate(garment_.vertex_count(), -1);
+  // The unarranged pieces each arranged vertex is sewn to: a corner where two seams meet is sewn
+  // to the pieces of both.
+  std::vector<std::vector<int>> sewn_candidates(garment_.vertex_count());
   std::vector<bool> is_candidate(piece_count, false);
   for (Eigen::Index k = 0; k < garment_.sewing_pairs.rows(); ++k) {
     for (int side = 0; side < 2; ++side) {
       const int own = garment_.sewing_pairs(k, side), other = garment_.sewing_pairs(k, 1 - side);
       const int own_piece = garment_.vertex_piece(own), other_piece = garment_.vertex_piece(other);
       if (!arranged[own_piece] || arranged[other_piece]) continue;
-      sewn_candidate[own] = other_piece;
+      std::vector<int>& sewn = sewn_candidates[own];
+      if (std::find(sewn.begin(), sewn.end(), other_piece) == sewn.end())
+        sewn.push_back(other_piece);
       is_candidate[other_piece] = true;
     }
   }
@@ -69,10 +72,13 @@ std::vector<Candidate> Selector::candidates(const std::vector<bool>& arranged,
     const std::vector<int>& outline = garment_.pieces[p].outline;
     for (std::size_t k = 0; k < outline.size(); ++k) {
       const int a = outline[k], b = outline[(k + 1) % outline.size()];
-      if (sewn_candidate[a] < 0 || sewn_candidate[a] != sewn_candidate[b]) continue;
-      const Eigen::Vector3d ab = positions.row(b) - positions.row(a);
-      edges_at_point[welded_(a)].push_back({sewn_candidate[a], ab});
-      edges_at_point[welded_(b)].push_back({sewn_candidate[a], -ab});
+      const std::vector<int>& at_b = sewn_candidates[b];
+      for (int candidate : sewn_candidates[a]) {
+        if (std::find(at_b.begin(), at_b.end(), candidate) == at_b.end()) continue;
+        const Eigen::Vector3d ab = positions.row(b) - positions.row(a);
+        edges_at_point[welded_(a)].push_back({candidate, ab});
+        edges_at_point[welded_(b)].push_back({candidate, -ab});
+      }
     }
   }
   PieceGroups groups(piece_count);

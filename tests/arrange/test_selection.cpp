@@ -292,6 +292,26 @@ class SelectionTest : public QObject {
       bent(v, 2) = bent(v, 0) - 0.2;
     QCOMPARE(selector.candidates(arranged, bent).size(), std::size_t{3});
   }
+
+  // §6.2 on one arranged piece: a top whose bottom edge is split at its middle, the left half sewn
+  // to one skirt and the right half to another. The corner between the two seams is sewn to both
+  // skirts; the two seams continue each other straight there and the skirts are one candidate.
+  void candidates_meeting_on_one_arranged_piece_are_combined() {
+    const std::string json = "{\"pattern\": {\"panels\": {" + rectangle("top", 40, 20, true) +
+                             ", " + rectangle("left", 20, 30) + ", " + rectangle("right", 20, 30) +
+                             "}, \"panel_order\": [\"top\", \"left\", \"right\"], \"stitches\": [" +
+                             stitch("top", 0, "left", 2) + ", " + stitch("top", 1, "right", 2) +
+                             "]}, \"properties\": {\"units_in_meter\": 100}}";
+    const Garment garment = build_garment(parse_pattern(json, "split_top.json"));
+    const std::vector<Candidate> candidates =
+        Selector(garment).candidates({true, false, false}, rest_layout(garment));
+    QCOMPARE(candidates.size(), std::size_t{1});
+    std::vector<int> combined = candidates[0].pieces;
+    std::sort(combined.begin(), combined.end());
+    QCOMPARE(combined, (std::vector<int>{1, 2}));
+    QVERIFY(std::abs(candidates[0].score - eq6(0.4, 0.4, 0.12, 0.12, SelectionParameters{})) <
+            1e-9);
+  }
 };
 
 QTEST_APPLESS_MAIN(SelectionTest)
