@@ -9,9 +9,20 @@
 namespace garment {
 namespace {
 
+// A class per group (#groups): the classifier's most probable one, or a seed choice's correction.
+using GroupClasses = std::vector<SeedClass>;
+
+GroupClasses most_probable_classes(const PieceClassification& classification) {
+  GroupClasses classes;
+  for (int g = 0; g < static_cast<int>(classification.groups.size()); ++g)
+    classes.push_back(classification.group_class(g));
+  return classes;
+}
+
 // Groups of the class `wanted`, connected by stitches to `start` through groups of that class.
 std::vector<int> connected_groups_of_class(const Garment& garment,
-                                           const PieceClassification& classification, int start,
+                                           const PieceClassification& classification,
+                                           const GroupClasses& classes, int start,
                                            SeedClass wanted) {
   std::set<int> found{start};
   std::vector<int> frontier{start};
@@ -23,7 +34,7 @@ std::vector<int> connected_groups_of_class(const Garment& garment,
       const int a = classification.piece_group[stitch.a.panel],
                 b = classification.piece_group[stitch.b.panel];
       for (const auto& [from, to] : {std::pair{a, b}, std::pair{b, a}}) {
-        if (from != group || found.count(to) || classification.group_class(to) != wanted) continue;
+        if (from != group || found.count(to) || classes[to] != wanted) continue;
         found.insert(to);
         frontier.push_back(to);
       }
@@ -43,14 +54,34 @@ std::vector<int> pieces_of(const PieceClassification& classification,
 }
 
 // All groups of a class, most probable first.
-std::vector<int> groups_of_class(const PieceClassification& classification, SeedClass wanted) {
+std::vector<int> groups_of_class(const PieceClassification& classification,
+                                 const GroupClasses& classes, SeedClass wanted) {
   std::vector<int> groups;
-  for (int g = 0; g < static_cast<int>(classification.groups.size()); ++g)
-    if (classification.group_class(g) == wanted) groups.push_back(g);
+  for (int g = 0; g < static_cast<int>(classes.size()); ++g)
+    if (classes[g] == wanted) groups.push_back(g);
   std::stable_sort(groups.begin(), groups.end(), [&](int a, int b) {
     return classification.probability(a, wanted) > classification.probability(b, wanted);
   });
   return groups;
+}
+
+// A garment has a front and a back. When the classifier puts every group of a front/back pair of
+// classes on one side (the identical front and back panels of a plain skirt get the same
+// probabilities), the group most probably of the other side, after the most probable group of this
+// side, goes there if the classifier gives it at least kOtherSideProbability.
+constexpr double kOtherSideProbability = 0.25;
+
+void complete_front_and_back(const PieceClassification& classification, GroupClasses& classes,
+                             SeedClass front, SeedClass back) {
+  for (const auto& [present, missing] : {std::pair{front, back}, std::pair{back, front}}) {
+    const std::vector<int> groups = groups_of_class(classification, classes, present);
+    if (groups.size() < 2 || !groups_of_class(classification, classes, missing).empty()) continue;
+    const auto other_side = std::max_element(groups.begin() + 1, groups.end(), [&](int a, int b) {
+      return classification.probability(a, missing) < classification.probability(b, missing);
+    });
+    if (classification.probability(*other_side, missing) >= kOtherSideProbability)
+      classes[*other_side] = missing;
+  }
 }
 
 }  // namespace
@@ -64,11 +95,12 @@ std::vector<int> SeedPlan::pieces() const {
 
 SeedPlan choose_seed(const Garment& garment, const PieceClassification& classification) {
   SeedPlan plan;
+  GroupClasses classes = most_probable_classes(classification);
   // 1. The neck or waist piece: the most confident of either class.
   int best = -1;
   SeedClass best_class = SeedClass::Neck;
   for (SeedClass wanted : {SeedClass::Neck, SeedClass::Waist}) {
-    for (int group : groups_of_class(classification, wanted)) {
+    for (int group : groups_of_class(classification, classes, wanted)) {
       if (best < 0 || classification.probability(group, wanted) >
                           classification.probability(best, best_class)) {
         best = group;
@@ -78,9 +110,10 @@ SeedPlan choose_seed(const Garment& garment, const PieceClassification& classifi
   }
   if (best >= 0) {
     const bool neck = best_class == SeedClass::Neck;
-    plan.parts.push_back({pieces_of(classification, connected_groups_of_class(
-                                                        garment, classification, best, best_class)),
-                          neck ? "neck" : "waist"});
+    plan.parts.push_back(
+        {pieces_of(classification,
+                   connected_groups_of_class(garment, classification, classes, best, best_class)),
+         neck ? "neck" : "waist"});
     plan.reason = neck ? "neck piece (classifier)" : "waist piece (classifier)";
     return plan;
   }
@@ -90,13 +123,14 @@ SeedPlan choose_seed(const Garment& garment, const PieceClassification& classifi
   const std::pair<const char*, const char*> locations[] = {{"chest_front", "chest_back"},
                                                            {"pelvis_front", "pelvis_back"}};
   for (int tier = 0; tier < 2; ++tier) {
+    complete_front_and_back(classification, classes, pairs[tier].first, pairs[tier].second);
     for (const auto& [wanted, location] : {std::pair{pairs[tier].first, locations[tier].first},
                                            std::pair{pairs[tier].second, locations[tier].second}}) {
-      const std::vector<int> groups = groups_of_class(classification, wanted);
+      const std::vector<int> groups = groups_of_class(classification, classes, wanted);
       if (groups.empty()) continue;
       plan.parts.push_back(
-          {pieces_of(classification,
-                     connected_groups_of_class(garment, classification, groups.front(), wanted)),
+          {pieces_of(classification, connected_groups_of_class(garment, classification, classes,
+                                                               groups.front(), wanted)),
            location});
     }
     if (!plan.parts.empty()) {

@@ -1,0 +1,139 @@
+// The seed choice (engine/seeding/seed_choice.h, paper §5) on a hand-made garment of four panels
+// with given class probabilities: the neck or waist piece wins over chest and pelvis pieces, front
+// and back pieces go to their two locations, a pair of identical panels that the classifier puts
+// on one side is split into front and back (only when it gives the other side a real chance), and
+// without any seed class the rule picks the piece with the most garment below its seams.
+
+#include <QtTest>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "engine/pattern/garment_mesh.h"
+#include "engine/pattern/pattern.h"
+#include "engine/seeding/seed_choice.h"
+
+using namespace garment;
+
+namespace {
+
+// A w×h (cm) rectangle panel, counter-clockwise from its lower left corner: edges bottom, right,
+// top, left.
+std::string rectangle(const std::string& name, double w, double h) {
+  const std::string W = std::to_string(w), H = std::to_string(h);
+  return "\"" + name +
+         "\": {\"translation\": [0, 0, 0], \"rotation\": [0, 0, 0], \"vertices\": [[0, 0], [" + W +
+         ", 0], [" + W + ", " + H + "], [0, " + H +
+         "]], \"edges\": [{\"endpoints\": [0, 1]}, {\"endpoints\": [1, 2]}, {\"endpoints\": [2, "
+         "3]}, {\"endpoints\": [3, 0]}]}";
+}
+
+std::string stitch(const std::string& a, int edge_a, const std::string& b, int edge_b) {
+  return "[{\"panel\": \"" + a + "\", \"edge\": " + std::to_string(edge_a) + "}, {\"panel\": \"" +
+         b + "\", \"edge\": " + std::to_string(edge_b) + "}]";
+}
+
+// Pieces 0 and 1: two identical skirt panels 50×60 sewn at both sides; piece 2: a band 100×5 sewn
+// on top of piece 0; piece 3: a flap 50×10 sewn below piece 1.
+const Garment& four_panels() {
+  static const Garment built = build_garment(parse_pattern(
+      "{\"pattern\": {\"panels\": {" + rectangle("one", 50, 60) + ", " + rectangle("two", 50, 60) +
+          ", " + rectangle("band", 100, 5) + ", " + rectangle("flap", 50, 10) +
+          "}, \"panel_order\": [\"one\", \"two\", \"band\", \"flap\"], \"stitches\": [" +
+          stitch("one", 1, "two", 3) + ", " + stitch("two", 1, "one", 3) + ", " +
+          stitch("one", 2, "band", 0) + ", " + stitch("two", 0, "flap", 2) +
+          "]}, \"properties\": {\"units_in_meter\": 100}}",
+      "seed_choice.json"));
+  return built;
+}
+
+// One group per piece; row g: the probabilities of piece g, the rest of the mass on `other`.
+PieceClassification classification(
+    const std::vector<std::vector<std::pair<SeedClass, double>>>& rows) {
+  PieceClassification result;
+  result.probabilities =
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), kSeedClassCount);
+  for (std::size_t g = 0; g < rows.size(); ++g) {
+    result.groups.push_back({static_cast<int>(g)});
+    result.piece_group.push_back(static_cast<int>(g));
+    double total = 0.0;
+    for (const auto& [seed_class, probability] : rows[g]) {
+      result.probabilities(static_cast<Eigen::Index>(g), static_cast<int>(seed_class)) =
+          probability;
+      total += probability;
+    }
+    result.probabilities(static_cast<Eigen::Index>(g), static_cast<int>(SeedClass::Other)) +=
+        1.0 - total;
+  }
+  return result;
+}
+
+using Parts = std::vector<std::pair<std::string, std::vector<int>>>;
+
+Parts parts_of(const SeedPlan& plan) {
+  Parts parts;
+  for (const SeedPart& part : plan.parts)
+    parts.emplace_back(part.location, part.pieces);
+  return parts;
+}
+
+constexpr SeedClass kFrontPelvis = SeedClass::FrontPelvis, kBackPelvis = SeedClass::BackPelvis;
+
+}  // namespace
+
+class SeedChoiceTest : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void waistPieceComesFirst() {
+    const SeedPlan plan = choose_seed(
+        four_panels(),
+        classification(
+            {{{kFrontPelvis, 0.9}}, {{kBackPelvis, 0.9}}, {{SeedClass::Waist, 0.6}}, {}}));
+    QCOMPARE(parts_of(plan), (Parts{{"waist", {2}}}));
+  }
+
+  void frontAndBackGoToTheirLocations() {
+    const SeedPlan plan = choose_seed(four_panels(), classification({{{SeedClass::FrontChest, 0.8}},
+                                                                     {{SeedClass::BackChest, 0.7}},
+                                                                     {},
+                                                                     {{kFrontPelvis, 0.6}}}));
+    QCOMPARE(parts_of(plan), (Parts{{"chest_front", {0}}, {"chest_back", {1}}}));
+  }
+
+  // Identical panels get the same probabilities; both on the back would put the front panel
+  // behind the body. The second most probable back group goes to the front.
+  void identicalPanelsOnOneSideAreSplit() {
+    const SeedPlan plan =
+        choose_seed(four_panels(), classification({{{kBackPelvis, 0.54}, {kFrontPelvis, 0.46}},
+                                                   {{kBackPelvis, 0.55}, {kFrontPelvis, 0.45}},
+                                                   {},
+                                                   {}}));
+    QCOMPARE(parts_of(plan), (Parts{{"pelvis_front", {0}}, {"pelvis_back", {1}}}));
+    QCOMPARE(plan.reason, std::string("pelvis pieces (classifier)"));
+  }
+
+  // Two pieces the classifier firmly puts on the back (the two halves of a back panel) stay
+  // there together.
+  void firmlyOneSidedPiecesStayTogether() {
+    const SeedPlan plan =
+        choose_seed(four_panels(), classification({{{kBackPelvis, 0.9}, {kFrontPelvis, 0.05}},
+                                                   {{kBackPelvis, 0.8}, {kFrontPelvis, 0.2}},
+                                                   {},
+                                                   {}}));
+    QCOMPARE(parts_of(plan), (Parts{{"pelvis_back", {0, 1}}}));
+  }
+
+  // Without seed classes: the piece with the most garment hanging below its seams, the band
+  // (piece 0, 0.3 m², below it), not piece 1 (the 0.05 m² flap below; pieces 0 and 1 are sewn
+  // at their sides, which carries nothing).
+  void ruleWithoutSeedClasses() {
+    const SeedPlan plan = choose_seed(four_panels(), classification({{}, {}, {}, {}}));
+    QCOMPARE(parts_of(plan), (Parts{{"waist", {2}}}));
+    QCOMPARE(plan.reason, std::string("rule: most garment hanging below its seams"));
+  }
+};
+
+QTEST_APPLESS_MAIN(SeedChoiceTest)
+#include "test_seed_choice.moc"
