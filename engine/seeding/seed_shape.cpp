@@ -10,6 +10,7 @@
 #include <numbers>
 #include <optional>
 
+#include "engine/arrange/termination.h"
 #include "engine/core/error.h"
 #include "engine/energy/bending_potential.h"
 #include "engine/energy/body_distance_potential.h"
@@ -190,11 +191,15 @@ class EllipseArc {
   std::vector<double> angle_, length_;
 };
 
+// How far under the body's armpits the side seams of a wrapped bodice start at most.
+constexpr double kUnderArmpit = 0.02;
+
 // Where a laid-out part's side seams to the opposite part are, from the seams that run up the
 // pattern, each taken at the mean of its vertices on this part (layout coordinates): the leftmost
 // and rightmost across, and their mean height. Empty without one on each side.
 struct SideSeams {
   double left = 0.0, right = 0.0, height = 0.0;
+  double top = -std::numeric_limits<double>::infinity();  // highest seam vertex
 };
 
 std::optional<SideSeams> side_seams(const Garment& garment, const PartLayout& layout,
@@ -221,9 +226,13 @@ std::optional<SideSeams> side_seams(const Garment& garment, const PartLayout& la
           garment.rest_positions.row(last) - garment.rest_positions.row(first);
       if (std::abs(run.y()) < std::abs(run.x())) continue;  // a shoulder seam
       Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-      for (int k = stitch.first_pair; k < stitch.first_pair + stitch.pair_count; ++k)
-        mean += garment.rest_positions.row(garment.sewing_pairs(k, side)).transpose();
-      mean = mean / stitch.pair_count + *offset;
+      for (int k = stitch.first_pair; k < stitch.first_pair + stitch.pair_count; ++k) {
+        const Eigen::Vector2d laid =
+            garment.rest_positions.row(garment.sewing_pairs(k, side)).transpose() + *offset;
+        mean += laid;
+        seams.top = std::max(seams.top, laid.y());
+      }
+      mean /= stitch.pair_count;
       seams.left = std::min(seams.left, mean.x());
       seams.right = std::max(seams.right, mean.x());
       seams.height += mean.y();
@@ -276,7 +285,7 @@ const SeedPart* opposite_part(const Scene& scene, const SeedPlan& plan, const Se
 }  // namespace
 
 void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double distance,
-                            Eigen::MatrixX3d& positions) {
+                            Eigen::MatrixX3d& positions, SeedStart start) {
   const Garment& garment = *scene.garment;
   for (const SeedPart& part : plan.parts) {
     const BodyLocation* location = &scene.body->location(part.location);
@@ -330,7 +339,8 @@ void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double dis
       const Eigen::Vector3d up = location->up.normalized();
       const Eigen::Vector3d across = up.cross(axis);
       const Eigen::Vector2d centre = vertex_mean(garment, layout);
-      const SeedPart* opposite = opposite_part(scene, plan, part);
+      const SeedPart* opposite =
+          start == SeedStart::Flat ? nullptr : opposite_part(scene, plan, part);
       if (!opposite) {
         for (std::size_t i = 0; i < layout.pieces.size(); ++i) {
           const Piece& piece = garment.pieces[layout.pieces[i]];
@@ -364,10 +374,15 @@ void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double dis
         middle = 0.5 * (seams->left + seams->right);
         // Both parts' side seams at the same height: halfway between where each part's centring
         // alone would put them.
-        const double here = location->center.dot(up) + seams->height - centre.y();
-        const double there = other.center.dot(up) + opposite_seams->height -
-                             vertex_mean(garment, opposite_layout).y();
-        lift = 0.5 * (there - here);
+        const double here = location->center.dot(up) - centre.y();
+        const double there = other.center.dot(up) - vertex_mean(garment, opposite_layout).y();
+        lift = 0.5 * ((there + opposite_seams->height) - (here + seams->height));
+        if (start == SeedStart::WrappedUnderArmpits) {
+          const double highest =
+              std::max(here + seams->top + lift, there + opposite_seams->top - lift);
+          const double armpits = scene.body->landmarks.armpits - kUnderArmpit;
+          if (highest > armpits) lift -= highest - armpits;
+        }
       }
       double half_depth = half_gap + distance;
       for (int i = 0; i < 100 && EllipseArc(half_width, half_depth).perimeter() < garment_round;
@@ -391,14 +406,14 @@ void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double dis
   }
 }
 
-SeedShapeReport shape_seed(const Scene& scene, const SeedPlan& plan, const EnergyParameters& energy,
-                           Eigen::MatrixX3d& positions, Observer* observer,
-                           const std::function<void(const Eigen::MatrixX3d&)>& on_iterate,
-                           const SeedShapeOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  const Garment& garment = *scene.garment;
-  place_seed_on_surfaces(scene, plan, energy.body_distance, positions);
+namespace {
 
+SolveReport solve_seed_shape(const Scene& scene, const SeedPlan& plan,
+                             const EnergyParameters& energy, Eigen::MatrixX3d& positions,
+                             Observer* observer,
+                             const std::function<void(const Eigen::MatrixX3d&)>& on_iterate,
+                             const SeedShapeOptions& options) {
+  const Garment& garment = *scene.garment;
   ActiveSet active(garment.vertex_count(), VertexRole::Outside);
   std::vector<int> seed_vertices;
   for (int piece : plan.pieces()) {
@@ -445,11 +460,53 @@ SeedShapeReport shape_seed(const Scene& scene, const SeedPlan& plan, const Energ
   settings.max_iterations = options.iterations;
   settings.stage = "seed";
   settings.on_iterate = on_iterate;
-  const SolveReport solved = solve(objective, positions, settings, observer);
+  return solve(objective, positions, settings, observer);
+}
+
+}  // namespace
+
+SeedShapeReport shape_seed(const Scene& scene, const SeedPlan& plan, const EnergyParameters& energy,
+                           Eigen::MatrixX3d& positions, Observer* observer,
+                           const std::function<void(const Eigen::MatrixX3d&)>& on_iterate,
+                           const SeedShapeOptions& options) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  const Garment& garment = *scene.garment;
+  // A front and back wrapped round the torso can start with the corner under an armhole inside the
+  // arm, pushed out in front of it by the solve: that piece ends stretched round the arm (200 % and
+  // more), which no later phase undoes. Such a seed is shaped again from the next start, with the
+  // side seams under the armpits, then flat; the first unbroken shape, or the least stretched, is
+  // kept. (Lowering every bodice would move the ones that fit off their chest location.)
+  std::vector<bool> seed_mask(garment.pieces.size(), false);
+  for (int piece : plan.pieces())
+    seed_mask[piece] = true;
+  const TerminationCheck strain_check(garment);
+  const Eigen::MatrixX3d unshaped = positions;
   SeedShapeReport report;
-  report.iterations = solved.iterations;
-  report.final_energy = solved.final_energy;
-  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.attempts = 0;
+  report.max_strain = std::numeric_limits<double>::infinity();
+  int iterations = 0;
+  // Without a front and back sewn together every start is the same.
+  const bool wrapped_pair = std::any_of(
+      plan.parts.begin(), plan.parts.end(),
+      [&](const SeedPart& part) { return opposite_part(scene, plan, part) != nullptr; });
+  for (SeedStart start : {SeedStart::Wrapped, SeedStart::WrappedUnderArmpits, SeedStart::Flat}) {
+    Eigen::MatrixX3d shaped = unshaped;
+    place_seed_on_surfaces(scene, plan, energy.body_distance, shaped, start);
+    const SolveReport solved =
+        solve_seed_shape(scene, plan, energy, shaped, observer, on_iterate, options);
+    iterations += solved.iterations;
+    ++report.attempts;
+    const double strain = strain_check.measure(seed_mask, shaped).max_strain;
+    if (strain < report.max_strain) {
+      positions = shaped;
+      report.max_strain = strain;
+      report.final_energy = solved.final_energy;
+    }
+    if (!wrapped_pair || report.max_strain <= options.broken_strain) break;
+  }
+  report.iterations = iterations;
+  report.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return report;
 }
 

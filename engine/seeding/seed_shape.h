@@ -20,12 +20,17 @@ struct SeedShapeOptions {
   // Seed bending is stiffer than the arrangement's default (§5.2: "a relatively high default value
   // for the bending stiffness"), by this factor.
   double bending_factor = 10.0;
+  // A shaped seed whose edges stretch beyond this (max strain) is caught on the body: it is shaped
+  // again from the next SeedStart (see shape_seed).
+  double broken_strain = 0.5;
 };
 
 struct SeedShapeReport {
   int iterations = 0;
   double seconds = 0.0;
   double final_energy = 0.0;
+  double max_strain = 0.0;  // of the seed's edges, as the termination check measures it
+  int attempts = 1;         // starts tried (SeedStart order) until one was not broken
 };
 
 // Writes the seed pieces' rows of `positions` (#V×3). Throws InputError when a part names a
@@ -35,11 +40,15 @@ SeedShapeReport shape_seed(const Scene& scene, const SeedPlan& plan, const Energ
                            const std::function<void(const Eigen::MatrixX3d&)>& on_iterate = {},
                            const SeedShapeOptions& options = {});
 
-// Only the start: the pieces wrapped on or laid onto their locations' surfaces, no solve. A part on
-// a front plane and one on the back plane sewn to it (a bodice's front and back) wrap together
-// round the torso on one ellipse through both planes, their side seams meeting at the sides; a part
-// on a plane alone has its vertex mean on the location's centre.
+// Where the seed starts. Wrapped: a part on a front plane and one on the back plane sewn to it (a
+// bodice's front and back) wrap together round the torso on one ellipse through both planes, their
+// side seams meeting at the sides. Under the armpits: the same, lowered so that the side seams
+// start 2 cm under the body's armpits at most. Flat: each part lies on its plane. A part on a
+// plane alone always lies flat with its vertex mean on the location's centre.
+enum class SeedStart { Wrapped, WrappedUnderArmpits, Flat };
+
+// Only the start: the pieces wrapped on or laid onto their locations' surfaces, no solve.
 void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double distance,
-                            Eigen::MatrixX3d& positions);
+                            Eigen::MatrixX3d& positions, SeedStart start = SeedStart::Wrapped);
 
 }  // namespace garment
