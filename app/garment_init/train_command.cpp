@@ -71,7 +71,8 @@ int train_classifier_command(const std::vector<std::string>& args) {
       load_labelled_patterns(split_files(files, "held-out"), labeller);
   const double feature_seconds = seconds_since(start);
   std::printf(
-      "%zu patterns: %zu training (+%zu whole-chest variants), %zu held out (position %% 5 == 0); "
+      "%zu patterns: %zu training (+%zu variants: whole chests, tops), %zu held out (position %% 5 "
+      "== 0); "
       "meshing and features in %.1f s\n",
       files.size(), training_files.size(), training.size() - training_files.size(), held_out.size(),
       feature_seconds);
@@ -105,7 +106,7 @@ int train_classifier_command(const std::vector<std::string>& args) {
        {"split", "training = name-sorted position % 5 != 0 (" +
                      std::to_string(training_files.size()) + " patterns, " +
                      std::to_string(training.size() - training_files.size()) +
-                     " whole-chest variants)"},
+                     " variants: whole chests, tops alone, chests alone)"},
        {"labels", "panel_regions.json class7, skirt panels by placement (side gores: other)"},
        {"network", std::to_string(shape.heads) + " heads x " + std::to_string(shape.head_width) +
                        ", then " + std::to_string(shape.classes) + " classes"},

@@ -71,6 +71,66 @@ std::vector<std::vector<int>> whole_chest_groups(const Garment& garment,
   return groups;
 }
 
+bool is_lower_or_waist(SeedClass seed_class) {
+  return seed_class == SeedClass::Waist || seed_class == SeedClass::FrontPelvis ||
+         seed_class == SeedClass::BackPelvis;
+}
+
+// The given panels of a pattern (in this order) with the stitches among them.
+Pattern sub_pattern(const Pattern& pattern, const std::vector<int>& panels) {
+  Pattern sub;
+  sub.source = pattern.source;
+  sub.units_in_meter = pattern.units_in_meter;
+  std::vector<int> sub_index(pattern.panels.size(), -1);
+  for (int panel : panels) {
+    sub_index[panel] = static_cast<int>(sub.panels.size());
+    sub.panels.push_back(pattern.panels[panel]);
+  }
+  for (const Stitch& stitch : pattern.stitches) {
+    if (sub_index[stitch.a.panel] < 0 || sub_index[stitch.b.panel] < 0) continue;
+    Stitch& kept = sub.stitches.emplace_back(stitch);
+    kept.a.panel = sub_index[stitch.a.panel];
+    kept.b.panel = sub_index[stitch.b.panel];
+  }
+  return sub;
+}
+
+// The tops inside a pattern with chest pieces: the chest pieces with every piece reached from them
+// through stitches without passing a waist or pelvis piece (a dress or jumpsuit without its lower
+// part), and the chest pieces alone (sleeveless). Other pattern sets cut tees and tops this way,
+// while GarmentCode's random designs mostly sew them to sleeves, cuffs and skirts. Empty when the
+// pattern has no chest piece; a set equal to the whole pattern or to the previous set is left out.
+std::vector<std::vector<int>> top_panel_sets(const Pattern& pattern,
+                                             const std::vector<SeedClass>& labels) {
+  const int panel_count = static_cast<int>(pattern.panels.size());
+  std::vector<int> chest;
+  for (int p = 0; p < panel_count; ++p)
+    if (labels[p] == SeedClass::FrontChest || labels[p] == SeedClass::BackChest) chest.push_back(p);
+  if (chest.empty()) return {};
+  std::vector<bool> reached(panel_count, false);
+  std::vector<int> frontier = chest;
+  for (int p : chest)
+    reached[p] = true;
+  while (!frontier.empty()) {
+    const int panel = frontier.back();
+    frontier.pop_back();
+    for (const Stitch& stitch : pattern.stitches) {
+      if (stitch.a.panel != panel && stitch.b.panel != panel) continue;
+      const int other = stitch.a.panel == panel ? stitch.b.panel : stitch.a.panel;
+      if (reached[other] || is_lower_or_waist(labels[other])) continue;
+      reached[other] = true;
+      frontier.push_back(other);
+    }
+  }
+  std::vector<int> top;
+  for (int p = 0; p < panel_count; ++p)
+    if (reached[p]) top.push_back(p);
+  std::vector<std::vector<int>> sets;
+  if (static_cast<int>(top.size()) < panel_count) sets.push_back(top);
+  if (chest.size() < top.size()) sets.push_back(chest);
+  return sets;
+}
+
 FeatureNormalisation fit_normalisation(const std::vector<LabelledPattern>& patterns) {
   const auto fit = [](const std::vector<const Eigen::MatrixXd*>& blocks, Eigen::Index columns,
                       Eigen::VectorXd& mean, Eigen::VectorXd& scale) {
@@ -156,14 +216,13 @@ GatModel train_member(const std::vector<GatInput>& inputs,
 
 std::vector<LabelledPattern> load_labelled_patterns(const std::vector<std::filesystem::path>& files,
                                                     const PanelLabeller& labeller,
-                                                    bool whole_chest_variants, Observer* observer) {
+                                                    bool training_variants, Observer* observer) {
   std::vector<std::vector<LabelledPattern>> loaded(files.size());
   std::vector<std::string> errors(files.size());
   tbb::parallel_for(std::size_t{0}, files.size(), [&](std::size_t i) {
     try {
-      const Garment garment = build_garment(load_pattern(files[i]));
-      const std::vector<SeedClass> piece_labels = labeller.label(garment.pattern, files[i]);
-      const auto add = [&](SeedGraph graph) {
+      const auto add = [&](const Garment& garment, const std::vector<SeedClass>& piece_labels,
+                           SeedGraph graph) {
         LabelledPattern& pattern = loaded[i].emplace_back();
         pattern.file = files[i];
         for (const Piece& piece : garment.pieces)
@@ -171,12 +230,22 @@ std::vector<LabelledPattern> load_labelled_patterns(const std::vector<std::files
         pattern.group_labels = group_labels(garment, graph, piece_labels);
         pattern.graph = std::move(graph);
       };
+      const Pattern pattern = load_pattern(files[i]);
+      const Garment garment = build_garment(pattern);
+      const std::vector<SeedClass> piece_labels = labeller.label(garment.pattern, files[i]);
       SeedGraph graph = build_seed_graph(garment);
       const std::size_t group_count = graph.groups.size();
-      add(std::move(graph));
-      if (whole_chest_variants) {
-        const std::vector<std::vector<int>> groups = whole_chest_groups(garment, piece_labels);
-        if (groups.size() < group_count) add(build_seed_graph(garment, groups));
+      add(garment, piece_labels, std::move(graph));
+      if (!training_variants) return;
+      const std::vector<std::vector<int>> groups = whole_chest_groups(garment, piece_labels);
+      if (groups.size() < group_count)
+        add(garment, piece_labels, build_seed_graph(garment, groups));
+      for (const std::vector<int>& panels : top_panel_sets(pattern, piece_labels)) {
+        const Garment top = build_garment(sub_pattern(pattern, panels));
+        std::vector<SeedClass> top_labels;
+        for (int panel : panels)
+          top_labels.push_back(piece_labels[panel]);
+        add(top, top_labels, build_seed_graph(top, whole_chest_groups(top, top_labels)));
       }
     } catch (const std::exception& error) {
       errors[i] = error.what();

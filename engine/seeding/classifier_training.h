@@ -27,12 +27,14 @@ struct LabelledPattern {
 
 // Imports, meshes (default options), builds the seed graph of and labels every file, in parallel;
 // the result is in file order. Throws InputError for a file that cannot be read or labelled.
-// With `whole_chest_variants`, a pattern whose front (or back) chest is two halves sewn together
-// is followed by a variant in which each such pair is one seed piece: GarmentCode cuts every
-// bodice in halves, other patterns often in one piece, and the classifier should know both.
+// With `training_variants`, each pattern is followed by variants that teach the classifier cuts
+// other pattern sets use: one in which every front (or back) chest made of two halves sewn
+// together is one seed piece (GarmentCode cuts every bodice in halves, other patterns often in one
+// piece), and, for a pattern with chest pieces, the top alone (chest pieces and what is sewn to
+// them, without waist and pelvis pieces) and the chest pieces alone, each with whole chests.
 std::vector<LabelledPattern> load_labelled_patterns(const std::vector<std::filesystem::path>& files,
                                                     const PanelLabeller& labeller,
-                                                    bool whole_chest_variants = false,
+                                                    bool training_variants = false,
                                                     Observer* observer = nullptr);
 
 // The fixed 80/20 split of a dataset: the file at position i of the name-sorted list

@@ -4,6 +4,8 @@
 
 #include <QtTest>
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "engine/core/atomic_file.h"
@@ -108,7 +110,7 @@ class ClassifierTest : public QObject {
         PanelLabeller::load(test::test_data("seeding/panel_regions.json"));
     const auto patterns = load_labelled_patterns(
         pattern_files(test::test_data("seeding/garmentcode_random")), labeller, true);
-    QVERIFY(patterns.size() > 20);  // 20 files and their whole-chest variants
+    QVERIFY(patterns.size() > 20);  // 20 files and their variants (whole chests, tops)
     TrainingOptions options;
     options.epochs = 3;
     options.ensemble = 2;
@@ -124,6 +126,58 @@ class ClassifierTest : public QObject {
     QCOMPARE(members.size(), std::size_t{2});
     QVERIFY(members[0].parameters != members[1].parameters);
     QCOMPARE(classifier_weights_json(members, {}), first);
+  }
+
+  // The training variants of a pattern follow it: the same pieces with whole chests, then the
+  // top alone (chests and what is sewn to them, no waist or pelvis piece) and the chests alone,
+  // each a sub-set of the pattern's pieces keeping their labels.
+  void trainingVariantsAddTopsAndChests() {
+    const PanelLabeller labeller =
+        PanelLabeller::load(test::test_data("seeding/panel_regions.json"));
+    const std::vector<std::filesystem::path> files =
+        pattern_files(test::test_data("seeding/garmentcode_random"));
+    const auto plain = load_labelled_patterns(files, labeller);
+    const auto variants = load_labelled_patterns(files, labeller, true);
+    QCOMPARE(plain.size(), files.size());
+    const auto is_chest = [](SeedClass c) {
+      return c == SeedClass::FrontChest || c == SeedClass::BackChest;
+    };
+    const auto is_lower = [](SeedClass c) {
+      return c == SeedClass::Waist || c == SeedClass::FrontPelvis || c == SeedClass::BackPelvis;
+    };
+    int tops = 0, chests_alone = 0;
+    std::size_t original = 0;
+    for (const LabelledPattern& variant : variants) {
+      if (original < plain.size() && variant.file == plain[original].file &&
+          variant.piece_names == plain[original].piece_names &&
+          variant.graph.node_count() == plain[original].graph.node_count()) {
+        ++original;  // the pattern itself
+        continue;
+      }
+      QVERIFY(original > 0);
+      const LabelledPattern& source = plain[original - 1];
+      QCOMPARE(variant.file, source.file);
+      // Pieces are a sub-set of the pattern's, each labelled as in the pattern.
+      for (std::size_t g = 0; g < variant.group_labels.size(); ++g) {
+        const std::string& name = variant.piece_names[variant.graph.groups[g].front()];
+        const auto at = std::find(source.piece_names.begin(), source.piece_names.end(), name);
+        QVERIFY2(at != source.piece_names.end(), name.c_str());
+        const int piece = static_cast<int>(at - source.piece_names.begin());
+        QCOMPARE(variant.group_labels[g], source.group_labels[source.graph.piece_group[piece]]);
+      }
+      if (variant.piece_names.size() == source.piece_names.size()) continue;  // whole chests
+      const auto& labels = variant.group_labels;
+      QVERIFY(std::none_of(labels.begin(), labels.end(), is_lower));
+      QVERIFY(std::any_of(labels.begin(), labels.end(), is_chest));
+      if (std::all_of(labels.begin(), labels.end(), is_chest))
+        ++chests_alone;
+      else
+        ++tops;
+    }
+    QCOMPARE(original, plain.size());
+    qInfo("%zu patterns: %d tops, %d chests alone", plain.size(), tops, chests_alone);
+    QVERIFY(tops > 0);
+    QVERIFY(chests_alone > 0);
   }
 
   void heldOutSubsetFindsSeeds() {
