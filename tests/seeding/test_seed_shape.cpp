@@ -316,8 +316,8 @@ class SeedShapeTest : public QObject {
   // again from the next start, and what is kept stretches no edge by more than half its rest
   // length (edge strain computed here from the rest positions).
   void caught_seed_is_shaped_again() {
-    auto garment = std::make_shared<const Garment>(
-        build_garment(load_pattern(test::test_data("patterns/gc_0097_specification.json"))));
+    auto garment = std::make_shared<const Garment>(build_garment(
+        load_pattern(test::test_data("patterns/caught_seed/gc_0097_specification.json"))));
     const std::shared_ptr<const Scene> scene = make_scene(garment, load("mean_all"));
     const SeedPlan plan = choose_seed(*garment, scene->classification);
     QCOMPARE(plan.parts.size(), std::size_t{2});
