@@ -13,26 +13,13 @@
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/pattern.h"
 #include "engine/seeding/seed_choice.h"
+#include "support/rectangle_patterns.h"
 
 using namespace garment;
+using garment::test::rectangle;
+using garment::test::stitch;
 
 namespace {
-
-// A w×h (cm) rectangle panel, counter-clockwise from its lower left corner: edges bottom, right,
-// top, left.
-std::string rectangle(const std::string& name, double w, double h) {
-  const std::string W = std::to_string(w), H = std::to_string(h);
-  return "\"" + name +
-         "\": {\"translation\": [0, 0, 0], \"rotation\": [0, 0, 0], \"vertices\": [[0, 0], [" + W +
-         ", 0], [" + W + ", " + H + "], [0, " + H +
-         "]], \"edges\": [{\"endpoints\": [0, 1]}, {\"endpoints\": [1, 2]}, {\"endpoints\": [2, "
-         "3]}, {\"endpoints\": [3, 0]}]}";
-}
-
-std::string stitch(const std::string& a, int edge_a, const std::string& b, int edge_b) {
-  return "[{\"panel\": \"" + a + "\", \"edge\": " + std::to_string(edge_a) + "}, {\"panel\": \"" +
-         b + "\", \"edge\": " + std::to_string(edge_b) + "}]";
-}
 
 // Pieces 0 and 1: two identical skirt panels 50×60 sewn at both sides; piece 2: a band 100×5 sewn
 // on top of piece 0; piece 3: a flap 50×10 sewn below piece 1.
