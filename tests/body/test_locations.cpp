@@ -62,11 +62,6 @@ class BodyLocationsTest : public QObject {
   Q_OBJECT
 
  private slots:
-  void initTestCase() {
-    QVERIFY(cache.isValid());
-    qputenv("GARMENT_CACHE_DIR", cache.path().toUtf8());
-  }
-
   void landmarks_are_in_anatomical_order() {
     for (const NamedBody& named : bodies()) {
       const BodyMesh mesh = load_body_obj(named.obj);
@@ -281,9 +276,6 @@ class BodyLocationsTest : public QObject {
       QVERIFY(QString(error.what()).contains("not a human body in A-pose"));
     }
   }
-
- private:
-  QTemporaryDir cache;
 };
 
 QTEST_GUILESS_MAIN(BodyLocationsTest)

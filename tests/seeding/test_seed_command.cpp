@@ -5,7 +5,6 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QProcess>
-#include <QProcessEnvironment>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -18,12 +17,6 @@ struct Run {
   QByteArray out, err;
 };
 
-// The body's distance field is cached in a folder of this test run, not the user's cache.
-QTemporaryDir& cache() {
-  static QTemporaryDir folder;
-  return folder;
-}
-
 QString pattern() {
   return QString::fromStdString(
       garment::test::test_data("patterns/gc_0012_specification.json").string());
@@ -31,9 +24,6 @@ QString pattern() {
 
 Run run(const QStringList& arguments) {
   QProcess process;
-  QProcessEnvironment environment = QProcessEnvironment::systemEnvironment();
-  environment.insert("GARMENT_CACHE_DIR", cache().path());
-  process.setProcessEnvironment(environment);
   process.start(GARMENT_INIT_EXE, arguments);
   process.waitForFinished(120000);
   return {process.exitCode(), process.readAllStandardOutput(), process.readAllStandardError()};
@@ -44,8 +34,6 @@ Run run(const QStringList& arguments) {
 class SeedCommandTest : public QObject {
   Q_OBJECT
  private slots:
-  void initTestCase() { QVERIFY(cache().isValid()); }
-
   void jsonReport() {
     const QString pattern = QString::fromStdString(
         garment::test::test_data("patterns/gc_0012_specification.json").string());

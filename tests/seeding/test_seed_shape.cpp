@@ -24,7 +24,6 @@
 //             makes its two sides "neighbours" facing opposite ways
 // The figures are printed (qInfo) for the report.
 
-#include <QTemporaryDir>
 #include <QtTest>
 
 #include <Eigen/Geometry>
@@ -203,7 +202,6 @@ std::string part_list(const Garment& garment, const SeedPlan& plan) {
 class SeedShapeTest : public QObject {
   Q_OBJECT
 
-  QTemporaryDir cache;
   std::map<std::string, std::shared_ptr<const Body>> bodies;
 
   std::shared_ptr<const Body> load(const std::string& name) {
@@ -217,11 +215,6 @@ class SeedShapeTest : public QObject {
   }
 
  private slots:
-  void initTestCase() {
-    QVERIFY(cache.isValid());
-    qputenv("GARMENT_CACHE_DIR", cache.path().toUtf8());
-  }
-
   void shape_data() {
     QTest::addColumn<QString>("body_name");
     QTest::addColumn<QString>("pattern_file");   // under tests/data
