@@ -54,8 +54,7 @@ std::vector<std::vector<int>> whole_chest_groups(const Garment& garment,
     const int a = garment.vertex_piece(garment.sewing_pairs(s, 0));
     const int b = garment.vertex_piece(garment.sewing_pairs(s, 1));
     if (a == b || piece_labels[a] != piece_labels[b]) continue;
-    if (piece_labels[a] != SeedClass::FrontChest && piece_labels[a] != SeedClass::BackChest)
-      continue;
+    if (!is_chest(piece_labels[a])) continue;
     if (partner[a] < 0 && partner[b] < 0) {
       partner[a] = b;
       partner[b] = a;
@@ -69,11 +68,6 @@ std::vector<std::vector<int>> whole_chest_groups(const Garment& garment,
     if (group.size() == 1 && partner[p] > p) groups.back().push_back(partner[p]);
   }
   return groups;
-}
-
-bool is_lower_or_waist(SeedClass seed_class) {
-  return seed_class == SeedClass::Waist || seed_class == SeedClass::FrontPelvis ||
-         seed_class == SeedClass::BackPelvis;
 }
 
 // The given panels of a pattern (in this order) with the stitches among them.
@@ -105,7 +99,7 @@ std::vector<std::vector<int>> top_panel_sets(const Pattern& pattern,
   const int panel_count = static_cast<int>(pattern.panels.size());
   std::vector<int> chest;
   for (int p = 0; p < panel_count; ++p)
-    if (labels[p] == SeedClass::FrontChest || labels[p] == SeedClass::BackChest) chest.push_back(p);
+    if (is_chest(labels[p])) chest.push_back(p);
   if (chest.empty()) return {};
   std::vector<bool> reached(panel_count, false);
   std::vector<int> frontier = chest;

@@ -21,6 +21,16 @@ inline std::string seed_class_name(SeedClass seed_class) {
   return std::string(kSeedClassNames[static_cast<int>(seed_class)]);
 }
 
+inline constexpr bool is_chest(SeedClass seed_class) {
+  return seed_class == SeedClass::FrontChest || seed_class == SeedClass::BackChest;
+}
+
+// The pieces of a garment's lower part: a waistband or a pelvis piece.
+inline constexpr bool is_lower_or_waist(SeedClass seed_class) {
+  return seed_class == SeedClass::Waist || seed_class == SeedClass::FrontPelvis ||
+         seed_class == SeedClass::BackPelvis;
+}
+
 inline std::optional<SeedClass> parse_seed_class(std::string_view name) {
   for (int c = 0; c < kSeedClassCount; ++c)
     if (kSeedClassNames[c] == name) return static_cast<SeedClass>(c);
