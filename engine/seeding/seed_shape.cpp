@@ -195,17 +195,22 @@ void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double dis
           (ring ? 1.0 : 1.02) * (ring ? layout.ring_length : span) / (2.0 * std::numbers::pi));
       const double arc_scale =
           ring ? 2.0 * std::numbers::pi * radius / layout.ring_length : 1.0;  // stretch ≥ 1
-      // The piece sewn to the front of the garment faces the front; else the middle of the part
-      // does.
+      // The front is the mean direction of the pieces round the axis, each weighted by how much
+      // its sewn neighbours say "front" (back pieces push it away): the seam between the two
+      // front pieces of a four-piece collar faces the front, not one of them. Without such
+      // neighbours, the middle of the part does.
       double front_arc = layout.box.centre().x();
-      double best = 0.0;
+      Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
+      double total_score = 0.0;
       for (std::size_t i = 0; i < layout.pieces.size(); ++i) {
         const double score = front_score(scene, layout.pieces[i], part.pieces);
-        if (score > best) {
-          best = score;
-          front_arc = rest_box(garment, layout.pieces[i]).centre().x() + layout.offsets[i].x();
-        }
+        const double arc = rest_box(garment, layout.pieces[i]).centre().x() + layout.offsets[i].x();
+        const double angle = arc_scale * arc / radius;
+        resultant += score * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+        total_score += std::abs(score);
       }
+      if (resultant.norm() > 1e-3 * total_score && total_score > 0.0)
+        front_arc = std::atan2(resultant.y(), resultant.x()) * radius / arc_scale;
       for (std::size_t i = 0; i < layout.pieces.size(); ++i) {
         const Piece& piece = garment.pieces[layout.pieces[i]];
         for (int v = piece.first_vertex; v < piece.first_vertex + piece.vertex_count; ++v) {

@@ -42,6 +42,7 @@
 #include "engine/core/mesh_topology.h"
 #include "engine/io/garment_obj.h"
 #include "engine/pattern/garment_mesh.h"
+#include "engine/quality/piece_placement.h"
 #include "engine/seeding/seed_choice.h"
 #include "engine/seeding/seed_shape.h"
 #include "support/test_paths.h"
@@ -302,6 +303,45 @@ class SeedShapeTest : public QObject {
     if (!(f.upright_degrees <= 20.0)) failed << "a piece is more than 20 degrees off upright";
     if (!(f.min_normal_dot > -0.5)) failed << "a piece folds";
     QVERIFY2(failed.isEmpty(), qPrintable(failed.join("; ")));
+  }
+
+  // A collar in four pieces (left and right, front and back, sewn end to end into a ring) starts
+  // wrapped round the neck with the seam between its two front pieces in front: each piece on
+  // its side of the body, front or back and left or right as its name says (the body faces +z,
+  // its left is +x), measured at the piece's area centroid against the neck location's centre.
+  void collar_ring_starts_facing_front_data() {
+    QTest::addColumn<QString>("body_name");
+    QTest::addColumn<QString>("pattern_file");
+    QTest::newRow("mean_all") << "mean_all"
+                              << "seeding/garmentcode_random/gc_0405_specification.json";
+    QTest::newRow("m_smpl_average_A40") << "m_smpl_average_A40"
+                                        << "seeding/garmentcode_random/gc_0410_specification.json";
+  }
+
+  void collar_ring_starts_facing_front() {
+    QFETCH(QString, body_name);
+    QFETCH(QString, pattern_file);
+    auto garment = std::make_shared<const Garment>(
+        build_garment(load_pattern(test::test_data(pattern_file.toStdString()))));
+    const std::shared_ptr<const Scene> scene = make_scene(garment, load(body_name.toStdString()));
+    const SeedPlan plan = choose_seed(*garment, scene->classification);
+    QCOMPARE(plan.parts.size(), std::size_t(1));
+    QCOMPARE(plan.parts.front().location, std::string("neck"));
+    QCOMPARE(plan.parts.front().pieces.size(), std::size_t(4));
+    Eigen::MatrixX3d positions = scene->initial_positions;
+    place_seed_on_surfaces(*scene, plan, ArrangementParameters().energy.body_distance, positions);
+    const Eigen::MatrixX3d centroids = piece_centroids(*garment, positions);
+    const Eigen::Vector3d neck = scene->body->location("neck").center;
+    for (int piece : plan.parts.front().pieces) {
+      const std::string& name = garment->pieces[piece].name;
+      const Eigen::Vector3d offset = centroids.row(piece).transpose() - neck;
+      qInfo("%s: %s at x %+.1f cm, z %+.1f cm from the neck's centre", qPrintable(body_name),
+            name.c_str(), 100.0 * offset.x(), 100.0 * offset.z());
+      const bool front = name.find("front") != std::string::npos;
+      const bool left = name.find("left") != std::string::npos;
+      QVERIFY2(front == (offset.z() > 0.0), name.c_str());
+      QVERIFY2(left == (offset.x() > 0.0), name.c_str());
+    }
   }
 
   // gc_0097's bodice wrapped round mean_all starts with an armhole corner in the arm and ends
