@@ -4,6 +4,7 @@
 #include <set>
 
 #include "engine/core/error.h"
+#include "engine/seeding/seed_layout.h"
 #include "engine/seeding/sewing_relationship.h"
 
 namespace garment {
@@ -96,24 +97,31 @@ std::vector<int> SeedPlan::pieces() const {
 SeedPlan choose_seed(const Garment& garment, const PieceClassification& classification) {
   SeedPlan plan;
   GroupClasses classes = most_probable_classes(classification);
-  // 1. The neck or waist piece: the most confident of either class.
+  // 1. The neck or waist piece: the most confident of either class whose part closes into a ring
+  // round the body, as a collar or a waistband does. GarmentCode's lapel "collars" (two long
+  // strips down the front, two flat bands on the shoulders) are classed as neck pieces but do not
+  // wrap the neck: wrapped round it as a ring, they twist the bodice round it. None of the 32
+  // such garments of the 500 came out clean from that seed; 10 do from their chest pieces.
   int best = -1;
   SeedClass best_class = SeedClass::Neck;
+  std::vector<int> best_pieces;
   for (SeedClass wanted : {SeedClass::Neck, SeedClass::Waist}) {
     for (int group : groups_of_class(classification, classes, wanted)) {
-      if (best < 0 || classification.probability(group, wanted) >
-                          classification.probability(best, best_class)) {
-        best = group;
-        best_class = wanted;
-      }
+      if (best >= 0 &&
+          classification.probability(group, wanted) <= classification.probability(best, best_class))
+        continue;
+      std::vector<int> pieces =
+          pieces_of(classification,
+                    connected_groups_of_class(garment, classification, classes, group, wanted));
+      if (lay_out_part(garment, pieces).ring_length <= 0.0) continue;
+      best = group;
+      best_class = wanted;
+      best_pieces = std::move(pieces);
     }
   }
   if (best >= 0) {
     const bool neck = best_class == SeedClass::Neck;
-    plan.parts.push_back(
-        {pieces_of(classification,
-                   connected_groups_of_class(garment, classification, classes, best, best_class)),
-         neck ? "neck" : "waist"});
+    plan.parts.push_back({best_pieces, neck ? "neck" : "waist"});
     plan.reason = neck ? "neck piece (classifier)" : "waist piece (classifier)";
     return plan;
   }

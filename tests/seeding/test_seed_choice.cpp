@@ -1,5 +1,6 @@
 // The seed choice (engine/seeding/seed_choice.h, paper §5) on a hand-made garment of four panels
-// with given class probabilities: the neck or waist piece wins over chest and pelvis pieces, front
+// with given class probabilities: the neck or waist piece wins over chest and pelvis pieces when
+// it closes into a ring (else it is passed over), front
 // and back pieces go to their two locations, a pair of identical panels that the classifier puts
 // on one side is split into front and back (only when it gives the other side a real chance), and
 // without any seed class the rule picks the piece with the most garment below its seams.
@@ -32,6 +33,21 @@ const Garment& four_panels() {
           stitch("one", 2, "band", 0) + ", " + stitch("two", 0, "flap", 2) +
           "]}, \"properties\": {\"units_in_meter\": 100}}",
       "seed_choice.json"));
+  return built;
+}
+
+// The same skirt panels (0, 1) with a waistband in a front and a back (2, 3, 50×10 each) sewn on
+// top of them and to each other at both sides: a ring.
+const Garment& banded_skirt() {
+  static const Garment built = build_garment(parse_pattern(
+      "{\"pattern\": {\"panels\": {" + rectangle("one", 50, 60) + ", " + rectangle("two", 50, 60) +
+          ", " + rectangle("band_one", 50, 10) + ", " + rectangle("band_two", 50, 10) +
+          "}, \"panel_order\": [\"one\", \"two\", \"band_one\", \"band_two\"], \"stitches\": [" +
+          stitch("one", 1, "two", 3) + ", " + stitch("two", 1, "one", 3) + ", " +
+          stitch("one", 2, "band_one", 0) + ", " + stitch("two", 2, "band_two", 0) + ", " +
+          stitch("band_one", 1, "band_two", 3) + ", " + stitch("band_two", 1, "band_one", 3) +
+          "]}, \"properties\": {\"units_in_meter\": 100}}",
+      "banded_skirt.json"));
   return built;
 }
 
@@ -74,11 +90,30 @@ class SeedChoiceTest : public QObject {
 
  private slots:
   void waistPieceComesFirst() {
-    const SeedPlan plan = choose_seed(
-        four_panels(),
-        classification(
-            {{{kFrontPelvis, 0.9}}, {{kBackPelvis, 0.9}}, {{SeedClass::Waist, 0.6}}, {}}));
-    QCOMPARE(parts_of(plan), (Parts{{"waist", {2}}}));
+    const SeedPlan plan = choose_seed(banded_skirt(), classification({{{kFrontPelvis, 0.9}},
+                                                                      {{kBackPelvis, 0.9}},
+                                                                      {{SeedClass::Waist, 0.6}},
+                                                                      {{SeedClass::Waist, 0.5}}}));
+    QCOMPARE(parts_of(plan), (Parts{{"waist", {2, 3}}}));
+  }
+
+  // Half a waistband does not go round the body: the pelvis pieces are the seed.
+  void waistPieceThatIsNoRingIsPassedOver() {
+    const SeedPlan plan = choose_seed(banded_skirt(), classification({{{kFrontPelvis, 0.9}},
+                                                                      {{kBackPelvis, 0.9}},
+                                                                      {{SeedClass::Waist, 0.6}},
+                                                                      {{SeedClass::Other, 0.5}}}));
+    QCOMPARE(parts_of(plan), (Parts{{"pelvis_front", {0}}, {"pelvis_back", {1}}}));
+  }
+
+  // The flap is sewn to nothing at its sides: it cannot wrap the neck, however sure the
+  // classifier is, and the chest pieces are the seed.
+  void neckPieceThatIsNoRingIsPassedOver() {
+    const SeedPlan plan = choose_seed(four_panels(), classification({{{SeedClass::FrontChest, 0.8}},
+                                                                     {{SeedClass::BackChest, 0.7}},
+                                                                     {},
+                                                                     {{SeedClass::Neck, 0.95}}}));
+    QCOMPARE(parts_of(plan), (Parts{{"chest_front", {0}}, {"chest_back", {1}}}));
   }
 
   void frontAndBackGoToTheirLocations() {

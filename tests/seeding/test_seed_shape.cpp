@@ -305,6 +305,23 @@ class SeedShapeTest : public QObject {
     QVERIFY2(failed.isEmpty(), qPrintable(failed.join("; ")));
   }
 
+  // gc_0339's "collar" is a lapel (two strips down the front, two flat bands on the shoulders),
+  // which the classifier takes for neck pieces; it does not close round the neck, so the chest
+  // pieces are the seed.
+  void lapel_collar_is_not_the_seed() {
+    auto garment = std::make_shared<const Garment>(
+        build_garment(load_pattern(test::test_data("patterns/gc_0339_specification.json"))));
+    const std::shared_ptr<const Scene> scene = make_scene(garment, load("mean_all"));
+    const int collar = garment->pattern.panel_index("left_collar_front");
+    QCOMPARE(scene->classification.group_class(scene->classification.piece_group[collar]),
+             SeedClass::Neck);
+    const SeedPlan plan = choose_seed(*garment, scene->classification);
+    QStringList chosen;
+    for (const SeedPart& part : plan.parts)
+      chosen << QString::fromStdString(part.location);
+    QCOMPARE(chosen, (QStringList{"chest_front", "chest_back"}));
+  }
+
   // A collar in four pieces (left and right, front and back, sewn end to end into a ring) starts
   // wrapped round the neck with the seam between its two front pieces in front: each piece on
   // its side of the body, front or back and left or right as its name says (the body faces +z,
