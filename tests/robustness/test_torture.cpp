@@ -30,6 +30,7 @@
 #include "engine/core/error.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/pattern.h"
+#include "support/test_environment.h"
 #include "support/test_paths.h"
 
 using namespace garment;
@@ -53,12 +54,6 @@ constexpr double kMemoryScale = 1.0;
 #else
 constexpr double kMemoryScale = 1.0;
 #endif
-
-double time_scale() {
-  const char* value = std::getenv("GARMENT_TEST_TIME_SCALE");
-  const double scale = value ? std::atof(value) : 1.0;
-  return scale >= 1.0 ? scale : 1.0;
-}
 
 // Peak resident set since the last reset_peak_memory(), in MiB (Linux: VmHWM, reset through
 // /proc/self/clear_refs).
@@ -635,7 +630,7 @@ class TortureTest : public QObject {
         if (message.find(fragment) == std::string::npos)
           failure = "the message lacks \"" + fragment + "\": " + message;
     }
-    const double time_bound = kCaseSeconds * time_scale();
+    const double time_bound = kCaseSeconds * test::time_scale();
     if (failure.empty() && seconds > time_bound)
       failure = "took " + std::to_string(seconds) + " s, over " + std::to_string(time_bound) + " s";
     const double memory_bound = kCaseMegabytes * kMemoryScale;

@@ -26,6 +26,7 @@
 #include <set>
 
 #include "engine/io/garment_obj.h"
+#include "tests/support/test_environment.h"
 #include "tests/ui/ui_test_support.h"
 #include "ui/arrangement_order_list.h"
 #include "ui/avatar_view.h"
@@ -62,11 +63,6 @@ bool sewn_together(const Garment& garment, int a, int b) {
     if ((pa == a && pb == b) || (pa == b && pb == a)) return true;
   }
   return false;
-}
-
-// The sanitizer builds run every call several times slower (GARMENT_TEST_TIME_SCALE > 1).
-bool sanitizer_build() {
-  return qEnvironmentVariableIntValue("GARMENT_TEST_TIME_SCALE") > 1;
 }
 
 int index_of(const std::vector<int>& values, int value) {
@@ -132,7 +128,7 @@ class StudioSessionTest : public QObject {
   void demoRunsToTheEndWithLiveUpdates() {
     // The full budgets in Release; in the sanitizer builds, where they take minutes, the quick
     // ones: the live updates and the end state are what is checked, and every phase still runs.
-    open(sanitizer_build() ? quick_options() : SessionOptions{});
+    open(test::sanitizer_build() ? quick_options() : SessionOptions{});
     ui::AvatarView* avatar = window_->avatarView();
     avatar->setOrbit(0, 0);
     avatar->frameAll();
@@ -198,7 +194,7 @@ class StudioSessionTest : public QObject {
     // software rasteriser (Xvfb on a shared CI machine) pays per pixel of the whole window for each
     // of them, so the window is small here; the demo test above prints the figures at full size.
     // Under the sanitizers every call is several times slower: latency is judged in Release.
-    if (sanitizer_build())
+    if (test::sanitizer_build())
       QSKIP("a sanitizer build: the latency is measured and asserted in the Release run");
     open({}, {720, 450});
     ui::EventLoopLatencyProbe probe;
@@ -392,7 +388,7 @@ class StudioSessionTest : public QObject {
   void stopMidSolveLeavesAConsistentSession() {
     // The full budgets give long solves to stop in; under the sanitizers the quick ones are long
     // enough, and the run to the end after the stop takes seconds instead of a minute.
-    open(sanitizer_build() ? quick_options() : SessionOptions{});
+    open(test::sanitizer_build() ? quick_options() : SessionOptions{});
     // Into the first batch's solves (the seed's snapshots come fast and the batch's phases are the
     // longest): step to Align, then run and stop during the solve.
     while (state().phase != Phase::Align) {
