@@ -97,8 +97,8 @@ std::vector<int> SeedPlan::pieces() const {
 SeedPlan choose_seed(const Garment& garment, const PieceClassification& classification) {
   SeedPlan plan;
   GroupClasses classes = most_probable_classes(classification);
-  // 1. The neck or waist piece: the most confident of either class whose part closes into a ring
-  // round the body, as a collar or a waistband does. GarmentCode's lapel "collars" (two long
+  // 1. The neck or waist piece: the most confident of either class whose part has a ring round
+  // the body, as a collar or a waistband does. GarmentCode's lapel "collars" (two long
   // strips down the front, two flat bands on the shoulders) are classed as neck pieces but do not
   // wrap the neck: wrapped round it as a ring, they twist the bodice round it. None of the 32
   // such garments of the 500 came out clean from that seed; 10 do from their chest pieces.
@@ -113,7 +113,7 @@ SeedPlan choose_seed(const Garment& garment, const PieceClassification& classifi
       std::vector<int> pieces =
           pieces_of(classification,
                     connected_groups_of_class(garment, classification, classes, group, wanted));
-      if (lay_out_part(garment, pieces).ring_length <= 0.0) continue;
+      if (!lay_out_part(garment, pieces).has_ring) continue;
       best = group;
       best_class = wanted;
       best_pieces = std::move(pieces);

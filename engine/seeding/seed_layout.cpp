@@ -91,9 +91,11 @@ PartLayout lay_out_part(const Garment& garment, const std::vector<int>& pieces) 
       const auto& [on_piece, on_next] = right_seam[piece];
       offset = offset + on_piece - on_next;  // the seam midpoints coincide
       piece = right->second;
-      // Back at the start: the whole part is one closed ring.
-      if (piece == start && chain_length == pieces.size())
-        layout.ring_length = offset.x() - start_offset.x();
+      // Back at the start: a ring; the whole part when every piece is in it.
+      if (piece == start) {
+        layout.has_ring = true;
+        if (chain_length == pieces.size()) layout.ring_length = offset.x() - start_offset.x();
+      }
     }
   }
   layout.box = {Eigen::Vector2d::Constant(1e30), Eigen::Vector2d::Constant(-1e30)};

@@ -28,6 +28,9 @@ struct PartLayout {
   // collar in four parts): the ring's length in the layout, from the first piece's left seam
   // around to the same seam; else 0.
   double ring_length = 0.0;
+  // Whether some of the pieces close into a ring (all of them, or a waistband with the skirt
+  // panels below it).
+  bool has_ring = false;
 };
 
 // `pieces`: indices into garment.pieces. Open chains first (from their left end), then rings,

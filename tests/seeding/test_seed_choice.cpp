@@ -97,6 +97,16 @@ class SeedChoiceTest : public QObject {
     QCOMPARE(parts_of(plan), (Parts{{"waist", {2, 3}}}));
   }
 
+  // A skirt panel the classifier also calls "waist", sewn below the band, joins the seed part:
+  // the part still has its ring.
+  void waistPartWithARingAndMoreIsKept() {
+    const SeedPlan plan = choose_seed(banded_skirt(), classification({{{SeedClass::Waist, 0.55}},
+                                                                      {{kBackPelvis, 0.9}},
+                                                                      {{SeedClass::Waist, 0.6}},
+                                                                      {{SeedClass::Waist, 0.5}}}));
+    QCOMPARE(parts_of(plan), (Parts{{"waist", {0, 2, 3}}}));
+  }
+
   // Half a waistband does not go round the body: the pelvis pieces are the seed.
   void waistPieceThatIsNoRingIsPassedOver() {
     const SeedPlan plan = choose_seed(banded_skirt(), classification({{{kFrontPelvis, 0.9}},
