@@ -215,6 +215,21 @@ class SeedShapeTest : public QObject {
     return loaded;
   }
 
+  // The pattern `pattern` (under tests/data) meshed, its scene on the body `body` and the seed
+  // chosen for it automatically.
+  struct Seeded {
+    std::shared_ptr<const Garment> garment;
+    std::shared_ptr<const Scene> scene;
+    SeedPlan plan;
+  };
+  Seeded seeded(const std::string& body, const std::string& pattern) {
+    auto garment =
+        std::make_shared<const Garment>(build_garment(load_pattern(test::test_data(pattern))));
+    std::shared_ptr<const Scene> scene = make_scene(garment, load(body));
+    SeedPlan plan = choose_seed(*garment, scene->classification);
+    return {std::move(garment), std::move(scene), std::move(plan)};
+  }
+
  private slots:
   void shape_data() {
     QTest::addColumn<QString>("body_name");
@@ -251,10 +266,7 @@ class SeedShapeTest : public QObject {
     QFETCH(QString, pattern_file);
     QFETCH(QStringList, locations);
     const std::string body = body_name.toStdString(), pattern = pattern_file.toStdString();
-    auto garment =
-        std::make_shared<const Garment>(build_garment(load_pattern(test::test_data(pattern))));
-    const std::shared_ptr<const Scene> scene = make_scene(garment, load(body));
-    const SeedPlan plan = choose_seed(*garment, scene->classification);
+    const auto [garment, scene, plan] = seeded(body, pattern);
     QStringList chosen;
     for (const SeedPart& part : plan.parts)
       chosen << QString::fromStdString(part.location);
@@ -309,13 +321,10 @@ class SeedShapeTest : public QObject {
   // which the classifier takes for neck pieces; it does not close round the neck, so the chest
   // pieces are the seed.
   void lapel_collar_is_not_the_seed() {
-    auto garment = std::make_shared<const Garment>(
-        build_garment(load_pattern(test::test_data("patterns/gc_0339_specification.json"))));
-    const std::shared_ptr<const Scene> scene = make_scene(garment, load("mean_all"));
+    const auto [garment, scene, plan] = seeded("mean_all", "patterns/gc_0339_specification.json");
     const int collar = garment->pattern.panel_index("left_collar_front");
     QCOMPARE(scene->classification.group_class(scene->classification.piece_group[collar]),
              SeedClass::Neck);
-    const SeedPlan plan = choose_seed(*garment, scene->classification);
     QStringList chosen;
     for (const SeedPart& part : plan.parts)
       chosen << QString::fromStdString(part.location);
@@ -338,10 +347,7 @@ class SeedShapeTest : public QObject {
   void collar_ring_starts_facing_front() {
     QFETCH(QString, body_name);
     QFETCH(QString, pattern_file);
-    auto garment = std::make_shared<const Garment>(
-        build_garment(load_pattern(test::test_data(pattern_file.toStdString()))));
-    const std::shared_ptr<const Scene> scene = make_scene(garment, load(body_name.toStdString()));
-    const SeedPlan plan = choose_seed(*garment, scene->classification);
+    const auto [garment, scene, plan] = seeded(body_name.toStdString(), pattern_file.toStdString());
     QCOMPARE(plan.parts.size(), std::size_t(1));
     QCOMPARE(plan.parts.front().location, std::string("neck"));
     QCOMPARE(plan.parts.front().pieces.size(), std::size_t(4));
@@ -366,10 +372,8 @@ class SeedShapeTest : public QObject {
   // again from the next start, and what is kept stretches no edge by more than half its rest
   // length (edge strain computed here from the rest positions).
   void caught_seed_is_shaped_again() {
-    auto garment = std::make_shared<const Garment>(build_garment(
-        load_pattern(test::test_data("patterns/caught_seed/gc_0097_specification.json"))));
-    const std::shared_ptr<const Scene> scene = make_scene(garment, load("mean_all"));
-    const SeedPlan plan = choose_seed(*garment, scene->classification);
+    const auto [garment, scene, plan] =
+        seeded("mean_all", "patterns/caught_seed/gc_0097_specification.json");
     QCOMPARE(plan.parts.size(), std::size_t{2});
     const ArrangementParameters parameters;
     SeedShapeOptions options;
@@ -412,10 +416,7 @@ class SeedShapeTest : public QObject {
   void chest_side_seams_start_together() {
     QFETCH(QString, body_name);
     QFETCH(QString, pattern_file);
-    auto garment = std::make_shared<const Garment>(
-        build_garment(load_pattern(test::test_data(pattern_file.toStdString()))));
-    const std::shared_ptr<const Scene> scene = make_scene(garment, load(body_name.toStdString()));
-    const SeedPlan plan = choose_seed(*garment, scene->classification);
+    const auto [garment, scene, plan] = seeded(body_name.toStdString(), pattern_file.toStdString());
     QCOMPARE(plan.parts.size(), std::size_t(2));
     Eigen::MatrixX3d positions = scene->initial_positions;
     place_seed_on_surfaces(*scene, plan, ArrangementParameters().energy.body_distance, positions);
