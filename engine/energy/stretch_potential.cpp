@@ -79,6 +79,14 @@ void StretchPotential::set_stiffness_scale(double scale) {
   changed();
 }
 
+void StretchPotential::set_strain_limit(double strain, double factor) {
+  if (!(strain >= 0.0 && factor >= 1.0))
+    throw std::invalid_argument("StretchPotential: strain limit < 0 or stiffening factor < 1");
+  limit_strain_ = strain;
+  limit_factor_ = factor;
+  changed();
+}
+
 void StretchPotential::bind_elements(const ActiveSet& active) {
   active_.clear();
   for (const Spring& spring : springs_) {
@@ -100,12 +108,23 @@ double StretchPotential::accumulate(const Positions& x, int begin, int end,
   Eigen::Vector3d gradient, diagonal;
   Eigen::Vector3d* const diagonal_out = out.wants_diagonal ? &diagonal : nullptr;
   const double* const position = x.data();
+  const bool limited = limit_factor_ > 1.0;
   for (int s = begin; s < end; ++s) {
     const Spring& spring = active_[s];
     const Eigen::Vector3d xi = Eigen::Vector3d::Map(position + 3 * spring.i);
     const Eigen::Vector3d xj = Eigen::Vector3d::Map(position + 3 * spring.j);
     energy += spring_energy(xi, xj, spring.rest_length, spring.stiffness, compression_, gradient,
                             diagonal_out);
+    if (limited && spring.rest_length > 0.0) {
+      const double knee = (1.0 + limit_strain_) * spring.rest_length;
+      if ((xi - xj).squaredNorm() > knee * knee) {
+        Eigen::Vector3d stiff_gradient, stiff_diagonal;
+        energy += spring_energy(xi, xj, knee, spring.stiffness * (limit_factor_ - 1.0), 1.0,
+                                stiff_gradient, diagonal_out ? &stiff_diagonal : nullptr);
+        gradient += stiff_gradient;
+        if (diagonal_out) diagonal += stiff_diagonal;
+      }
+    }
     out.gradient_row(spring.i) += gradient;
     out.gradient_row(spring.j) -= gradient;
     if (diagonal_out) {

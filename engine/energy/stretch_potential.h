@@ -11,6 +11,12 @@
 // short one, GarmentCode's ruffles and pleats) must shorten its edge without pushing the cloth
 // into folds. The energy stays C¹ at l = L (both branches have zero slope there).
 //
+// Cloth stiffens steeply once its yarns straighten (the "biphasic" curves of Wang, O'Brien and
+// Ramamoorthi, "Data-Driven Elastic Models for Cloth", SIGGRAPH 2011). With a strain limit s₀ and
+// a factor f > 1, a spring stretched past (1 + s₀) L adds
+//   ½ k (f − 1) (l − (1 + s₀) L)²,
+// a second spring of rest length (1 + s₀) L acting only under tension (C¹ at the knee).
+//
 // Hessian diagonal: of the per-spring block k[n nᵀ + max(0, 1 − L/l)(I − n nᵀ)] (n = unit edge
 // direction), the exact Hessian with the negative part of a compressed spring removed: exact for
 // springs at or beyond their rest length, larger than the exact (indefinite) one when compressed.
@@ -35,6 +41,9 @@ class StretchPotential : public Potential {
 
   // Scales every spring's stiffness relative to the values given at construction.
   void set_stiffness_scale(double scale);
+  // Springs past strain `strain` stiffen by `factor` (≥ 1; 1 switches the limit off). Dart
+  // springs (zero rest length) are not limited.
+  void set_strain_limit(double strain, double factor);
 
   const char* name() const override { return "stretch"; }
   int element_count() const override { return static_cast<int>(active_.size()); }
@@ -57,6 +66,8 @@ class StretchPotential : public Potential {
   std::vector<Spring> active_;   // bound, stiffness scaled
   double scale_ = 1.0;
   double compression_ = 1.0;
+  double limit_strain_ = 0.0;
+  double limit_factor_ = 1.0;
 };
 
 }  // namespace garment

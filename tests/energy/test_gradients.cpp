@@ -195,6 +195,35 @@ class EnergyGradientsTest : public QObject {
             1e-9 * energy_of(hard, shrunk));
   }
 
+  void stretchStiffensPastTheLimit() {
+    auto limited = std::make_shared<StretchPotential>(garment_, 1000.0, 500.0);
+    limited->set_strain_limit(0.1, 8.0);
+    // Strains spread round the knee (10 % ± a few): both branches and the switch are checked.
+    const FiniteDifferenceCheck general =
+        check(limited, active_, random_state(garment_, 1.1, 1.5e-3, 10));
+    QVERIFY(general.gradient_norm > 0.0);
+    QVERIFY(general.gradient_error <= 1e-5);
+    QVERIFY(general.max_diagonal_deficit <= 1e-4 * general.max_fd_diagonal);
+    expect_exact("stretch (limited)",
+                 check(limited, active_, random_state(garment_, 1.2, 5e-4, 11)));
+
+    // Uniformly stretched by 20 %, twice the limit: each mesh spring costs ½ k (0.2 L)² plus
+    // ½ k (8 − 1) (0.1 L)², 1 + 7/4 times the plain spring. Below the limit nothing changes.
+    auto plain = std::make_shared<StretchPotential>(garment_, 1000.0, 500.0);
+    auto darts_only = std::make_shared<StretchPotential>(garment_, 0.0, 500.0);
+    for (double scale : {1.2, 1.05}) {
+      const Eigen::MatrixX3d stretched = random_state(garment_, scale, 0.0, 12);
+      const double darts = energy_of(darts_only, stretched);
+      const double mesh_plain = energy_of(plain, stretched) - darts;
+      const double mesh_limited = energy_of(limited, stretched) - darts;
+      const double expected_ratio = scale > 1.1 ? 2.75 : 1.0;
+      QVERIFY(mesh_plain > 0.0);
+      QVERIFY2(std::abs(mesh_limited - expected_ratio * mesh_plain) <= 1e-9 * mesh_limited,
+               qPrintable(QString("scale %1: ratio %2").arg(scale).arg(mesh_limited / mesh_plain)));
+    }
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, limited->set_strain_limit(0.1, 0.5));
+  }
+
   void bending() {
     std::vector<BendingStencil> stencils = interior_bending_stencils(garment_);
     const std::vector<BendingStencil> seams = seam_bending_stencils(garment_);
