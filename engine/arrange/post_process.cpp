@@ -26,6 +26,8 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   context.body_repulsion->set_stiffness(energy.body_repulsion_stiffness *
                                         parameters.post_process_repulsion_factor);
   context.gravity->set_acceleration(energy.gravity * parameters.post_process_gravity_factor);
+  context.stretch->set_strain_limit(parameters.post_process_strain_limit,
+                                    parameters.post_process_strain_limit_factor);
   Objective objective(active);
   objective.add(context.stretch)
       .add(context.bending)
@@ -82,6 +84,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   // The shared potentials go back to their arrangement strengths.
   context.sewing->set_stiffness(energy.sewing_stiffness);
   context.body_repulsion->set_stiffness(energy.body_repulsion_stiffness);
+  context.stretch->set_strain_limit(0.0, 1.0);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -63,6 +63,8 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_sewing_factor", p.post_process_sewing_factor);
   visit("post_process_repulsion_factor", p.post_process_repulsion_factor);
   visit("post_process_gravity_factor", p.post_process_gravity_factor);
+  visit("post_process_strain_limit", p.post_process_strain_limit);
+  visit("post_process_strain_limit_factor", p.post_process_strain_limit_factor);
 }
 
 // `key` as written ("energy.stretch_stiffness") or as nested objects ({"energy": {...}}).
@@ -110,6 +112,10 @@ void apply_parameters_json(const std::string& json_text, const std::string& sour
   for (const std::string& key : present)
     if (std::find(known.begin(), known.end(), key) == known.end())
       throw_input_error(source, key, "unknown parameter");
+  if (!(parameters.post_process_strain_limit >= 0.0))
+    throw_input_error(source, "post_process_strain_limit", "must be at least 0");
+  if (!(parameters.post_process_strain_limit_factor >= 1.0))
+    throw_input_error(source, "post_process_strain_limit_factor", "must be at least 1 (1: off)");
 }
 
 ArrangementParameters load_parameters(const std::filesystem::path& path) {

@@ -56,6 +56,15 @@ class ParametersJsonTest : public QObject {
     QVERIFY(!error_of("{").isEmpty());
   }
 
+  void outOfRangeStrainLimitNamesTheKey() {
+    const QString factor = error_of(R"({"post_process_strain_limit_factor": 0.5})");
+    QVERIFY2(factor.contains("p.json") && factor.contains("post_process_strain_limit_factor"),
+             qPrintable(factor));
+    const QString limit = error_of(R"({"post_process_strain_limit": -0.1})");
+    QVERIFY2(limit.contains("post_process_strain_limit"), qPrintable(limit));
+    QVERIFY(error_of(R"({"post_process_strain_limit_factor": 1})").isEmpty());
+  }
+
   void reportedParametersReadBack() {
     ArrangementParameters changed;
     changed.energy.bending_stiffness = 0.004;
