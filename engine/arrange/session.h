@@ -52,7 +52,8 @@ struct PhaseRecord {
 struct BatchRecord {
   std::vector<int> pieces;  // after any growth
   std::vector<std::string> revisits;
-  BatchCheck check;  // the last check
+  bool out_of_time = false;  // a revisit the check asked for was skipped (revisit_seconds)
+  BatchCheck check;          // the last check
   double seconds = 0.0;
 };
 

@@ -45,6 +45,7 @@ std::string session_report_json(const Session& session, const GarmentMetrics& me
     json["batches"].push_back({{"pieces", piece_names(garment, batch.pieces)},
                                {"vertices", vertices},
                                {"revisits", batch.revisits},
+                               {"out_of_time", batch.out_of_time},
                                {"theta_in", batch.check.theta_in},
                                {"theta_out", batch.check.theta_out},
                                {"max_strain", batch.check.max_strain},

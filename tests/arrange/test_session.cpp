@@ -218,6 +218,33 @@ class SessionTest : public QObject {
     QVERIFY(session.done());
   }
 
+  void revisits_stop_once_the_time_is_spent() {
+    // A θ_in threshold no batch can meet (normals' dots are at most 1): every check asks to
+    // flatten, which the session does while it has time and skips once it has none.
+    const auto run = [&](double revisit_seconds) {
+      SessionOptions options = small_options();
+      options.arrangement.theta_in_threshold = 2.0;
+      options.arrangement.revisit_seconds = revisit_seconds;
+      Session session(scene_, options);
+      session.run();
+      return session.report();
+    };
+    const SessionReport in_time = run(1e9);
+    const SessionReport out_of_time = run(0.0);
+    int revisited = 0, skipped = 0;
+    for (const BatchRecord& batch : in_time.batches) {
+      revisited += batch.revisits.empty() ? 0 : 1;
+      QVERIFY(!batch.out_of_time);
+    }
+    for (const BatchRecord& batch : out_of_time.batches) {
+      QVERIFY(batch.revisits.empty());
+      skipped += batch.out_of_time ? 1 : 0;
+    }
+    QCOMPARE(revisited, static_cast<int>(in_time.batches.size()));
+    QCOMPARE(skipped, static_cast<int>(out_of_time.batches.size()));
+    QCOMPARE(out_of_time.order.size(), in_time.order.size());
+  }
+
   void restore_gives_back_the_checkpoint_exactly() {
     Session session(scene_, small_options());
     std::vector<Eigen::MatrixX3d> positions = {session.positions()};
