@@ -217,7 +217,9 @@ void Session::run_select() {
   }
   state_.batch.emplace(*context_, pieces, state_.arranged);
   state_.batch_index = static_cast<int>(state_.report.batches.size());
-  state_.report.batches.push_back({pieces, {}, {}, 0.0});
+  BatchRecord record;
+  record.pieces = pieces;
+  state_.report.batches.push_back(std::move(record));
   state_.visit = 0;
   state_.flatten_revisits = 0;
   state_.seam_revisited = state_.grown = false;
