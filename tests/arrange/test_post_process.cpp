@@ -10,6 +10,7 @@
 
 #include "engine/arrange/session.h"
 #include "engine/core/mesh_topology.h"
+#include "support/test_environment.h"
 #include "support/test_paths.h"
 
 using namespace garment;
@@ -53,6 +54,11 @@ class PostProcessTest : public QObject {
 
  private slots:
   void strainLimitBringsOverstretchedEdgesBack() {
+    // Two whole sessions at full budgets, a minute under the sanitizers for figures the Release
+    // run checks; the sanitizers see the limited springs in every session's post-process
+    // (arrange_session, ui_studio_session) and in energy_gradients.
+    if (test::sanitizer_build())
+      QSKIP("a sanitizer build: the strain figures are checked in the Release run");
     // One thread: both sessions arrange the garment identically before their post-processes.
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     const std::shared_ptr<const Scene> scene =
