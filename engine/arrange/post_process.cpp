@@ -84,7 +84,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   // The shared potentials go back to their arrangement strengths.
   context.sewing->set_stiffness(energy.sewing_stiffness);
   context.body_repulsion->set_stiffness(energy.body_repulsion_stiffness);
-  context.stretch->set_strain_limit(0.0, 1.0);
+  context.stretch->clear_strain_limit();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

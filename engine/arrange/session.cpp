@@ -251,9 +251,12 @@ void Session::run_check() {
                                state_.seam_revisited, state_.grown);
   const bool out_of_time = state_.report.seconds > options_.arrangement.revisit_seconds;
   if (revisit != Revisit::None && out_of_time) record.out_of_time = true;
-  if (revisit == Revisit::Grow && !out_of_time && !batch.grow())
+  bool revisiting = revisit != Revisit::None && !out_of_time;
+  if (revisiting && revisit == Revisit::Grow && !batch.grow()) {
     state_.grown = true;  // nothing to grow by: accept
-  if (revisit != Revisit::None && !out_of_time && !(revisit == Revisit::Grow && state_.grown)) {
+    revisiting = false;
+  }
+  if (revisiting) {
     record.revisits.push_back(to_string(revisit));
     if (revisit == Revisit::Flatten) ++state_.flatten_revisits;
     if (revisit == Revisit::Seam) state_.seam_revisited = true;

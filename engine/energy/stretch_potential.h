@@ -41,9 +41,10 @@ class StretchPotential : public Potential {
 
   // Scales every spring's stiffness relative to the values given at construction.
   void set_stiffness_scale(double scale);
-  // Springs past strain `strain` stiffen by `factor` (≥ 1; 1 switches the limit off). Dart
-  // springs (zero rest length) are not limited.
+  // Springs past strain `strain` stiffen by `factor` (≥ 1). Dart springs (zero rest length) are
+  // not limited.
   void set_strain_limit(double strain, double factor);
+  void clear_strain_limit() { set_strain_limit(0.0, 1.0); }
 
   const char* name() const override { return "stretch"; }
   int element_count() const override { return static_cast<int>(active_.size()); }
