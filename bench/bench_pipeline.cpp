@@ -1,9 +1,10 @@
 // The automatic pipeline end to end (issue 7): every pattern of a GarmentCode folder on its own
-// body (index.json → body_obj), arranged by a Session and judged by the quality verdict, under two
-// configurations: the default batches (§6.2, up to `batch_vertex_cap` vertices) and one piece at a
-// time (the batching ablation of §8). Prints per configuration the success rate, the failures by
-// class, the time per garment (median, p95, max; wall and CPU, the machine may be shared) and the
-// time saved by batching over the patterns both configurations ran.
+// body (index.json → body_obj), arranged by a Session and judged by the quality verdict, under
+// three configurations: the default (batches up to `batch_vertex_cap` vertices, §6.2, arranged in
+// phases, §7), one piece at a time (the batching ablation of §8) and every potential at once in
+// one solve per batch (the phasing ablation of §8). Prints per configuration the success rate, the
+// failures by class, the time per garment (median, p95, max; wall and CPU, the machine may be
+// shared), the time saved by batching and what phasing changes, over the same patterns.
 // Usage: bench_pipeline [DIR] [--limit N] [--parameters P.json] [--no-ablation]
 
 #include <nlohmann/json.hpp>
@@ -73,12 +74,23 @@ Run arrange(const std::filesystem::path& pattern, const std::filesystem::path& b
   return run;
 }
 
+double cpu_total(const Configuration& configuration) {
+  double total = 0.0;
+  for (const Run& run : configuration.runs)
+    total += run.cpu_seconds;
+  return total;
+}
+
+int clean_count(const Configuration& configuration) {
+  return static_cast<int>(std::count_if(configuration.runs.begin(), configuration.runs.end(),
+                                        [](const Run& run) { return run.ok; }));
+}
+
 void print(const Configuration& configuration) {
   std::vector<double> wall, cpu;
   std::array<int, garment::kFailureKindCount> by_kind{};
-  int ok = 0;
+  const int ok = clean_count(configuration);
   for (const Run& run : configuration.runs) {
-    ok += run.ok;
     wall.push_back(run.seconds);
     cpu.push_back(run.cpu_seconds);
     for (garment::FailureKind kind : run.failures)
@@ -122,8 +134,10 @@ int main(int argc, char** argv) {
     Configuration batched{"batches up to the vertex cap (default)", parameters, {}};
     Configuration single{"one piece at a time", parameters, {}};
     single.parameters.selection.batch_vertex_cap = 1;
+    Configuration at_once{"every potential at once (no phases)", parameters, {}};
+    at_once.parameters.phased = false;
     std::vector<Configuration*> configurations{&batched};
-    if (ablation) configurations.push_back(&single);
+    if (ablation) configurations.insert(configurations.end(), {&single, &at_once});
     const double load = [] {
       double value = 0.0;
       if (FILE* file = std::fopen("/proc/loadavg", "r")) {
@@ -154,15 +168,14 @@ int main(int argc, char** argv) {
     for (const Configuration* configuration : configurations)
       print(*configuration);
     if (ablation) {
-      double batched_total = 0.0, single_total = 0.0;
-      for (const Run& run : batched.runs)
-        batched_total += run.cpu_seconds;
-      for (const Run& run : single.runs)
-        single_total += run.cpu_seconds;
+      const double batched_total = cpu_total(batched), single_total = cpu_total(single);
       std::printf(
           "\nbatching saves %.1f %% of the CPU time of one piece at a time (%.1f s vs %.1f s)\n",
           single_total > 0 ? 100.0 * (1.0 - batched_total / single_total) : 0.0, batched_total,
           single_total);
+      std::printf(
+          "phasing: %d clean in phases, %d with every potential at once (%.1f s vs %.1f s)\n",
+          clean_count(batched), clean_count(at_once), batched_total, cpu_total(at_once));
     }
   } catch (const std::exception& error) {
     std::fprintf(stderr, "bench_pipeline: %s\n", error.what());

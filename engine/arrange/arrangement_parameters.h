@@ -34,6 +34,12 @@ struct ArrangementParameters {
   StepBudget refine{150, 300};  // with self repulsion, default bending
   StepBudget settle{100, 200};  // then with mild gravity
 
+  // The phasing ablation (§8, bench_pipeline --phasing): false makes the align step one solve of
+  // every potential at once (body repulsion on every vertex, self repulsion, default bending, mild
+  // gravity, over the refine domain) with the three steps' budgets summed; the other two steps
+  // then do nothing.
+  bool phased = true;
+
   // Eq. 13 thresholds. θ: smallest dot of neighbour triangle normals inside the batch (in) and
   // across its seams (out); strain: (length − rest) / rest of the batch's springs.
   double theta_in_threshold = 0.0;    // a fold sharper than 90° inside a piece

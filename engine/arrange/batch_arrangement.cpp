@@ -127,6 +127,26 @@ int BatchArrangement::solve_with(Objective& objective, int iterations, const cha
   return report.iterations;
 }
 
+void BatchArrangement::add_self_repulsion(Objective& objective) const {
+  // Eq. 12: the batch stays outside the arranged pieces. Vertices on the seam and next to it are
+  // held by sewing at the partner's triangles; repelling them would only fight the seam.
+  std::vector<int> repelled;
+  for (int v : vertices_)
+    if (batch_ring_[v] < 0 || batch_ring_[v] > 1) repelled.push_back(v);
+  std::vector<int> obstacles;
+  for (int t = 0; t < context_->garment.triangle_count(); ++t)
+    if (arranged_[context_->garment.triangle_piece(t)]) obstacles.push_back(t);
+  if (obstacles.empty() || repelled.empty()) return;
+  const EnergyParameters& energy = context_->parameters.energy;
+  SelfRepulsionSettings self;
+  self.stiffness = energy.self_repulsion_stiffness;
+  self.buffer = energy.repulsion_buffer;
+  self.search_radius = energy.self_repulsion_search_radius;
+  self.refresh_interval = energy.self_repulsion_refresh_interval;
+  objective.add(std::make_shared<SelfRepulsionPotential>(context_->garment.triangles, repelled,
+                                                         obstacles, self));
+}
+
 StepRecord BatchArrangement::run(ArrangeStep step, int visit, Eigen::MatrixX3d& positions,
                                  Observer* observer, const IterateCallback& on_iterate) {
   const auto start = std::chrono::steady_clock::now();
@@ -136,9 +156,16 @@ StepRecord BatchArrangement::run(ArrangeStep step, int visit, Eigen::MatrixX3d& 
   record.step = step;
   record.visit = visit;
   place_new_pieces(positions);
+  const auto finish = [&] {
+    record.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return record;
+  };
+  // The phasing ablation: everything happens in the align step.
+  if (!parameters.phased && step != ArrangeStep::Align) return finish();
 
   // Align and body removal: the batch and the seam neighbourhood, arranged vertices held by F^ext.
-  const bool widened = step == ArrangeStep::Refine;
+  const bool widened = step == ArrangeStep::Refine || !parameters.phased;
   Domain domain_now = widened ? domain(parameters.refine_rings, parameters.seam_rings)
                               : domain(parameters.seam_rings, -1);
   Eigen::MatrixX3d targets(domain_now.softly_fixed.size(), 3);
@@ -151,12 +178,27 @@ StepRecord BatchArrangement::run(ArrangeStep step, int visit, Eigen::MatrixX3d& 
 
   Objective objective(domain_now.active);
   objective.add(context_->stretch).add(context_->bending).add(context_->sewing).add(fixing);
+  objective.add(context_->body_repulsion);
+  const int deepest = *std::max_element(batch_ring_.begin(), batch_ring_.end());
+  const int body_rounds = deepest < 0 ? 0 : deepest / parameters.rings_per_round + 1;
+
+  if (!parameters.phased) {
+    add_self_repulsion(objective);
+    context_->gravity->set_acceleration(energy.gravity * energy.mild_gravity_factor);
+    objective.add(context_->gravity);
+    const int iterations =
+        parameters.align.iterations(visit) + body_rounds * parameters.body_round.iterations(visit) +
+        parameters.body_final.iterations(visit) + parameters.refine.iterations(visit) +
+        parameters.settle.iterations(visit);
+    solve_with(objective, iterations, "all potentials at once", positions, observer, on_iterate,
+               record);
+    return finish();
+  }
 
   switch (step) {
     case ArrangeStep::Align: {
       // Body repulsion only where the piece starts outside the body: what is inside would be pushed
       // to whichever side is nearer, often the wrong one (§7.2, Fig. 8d).
-      objective.add(context_->body_repulsion);
       ActiveSet active = domain_now.active;
       for (int v : vertices_)
         active.set_body_repulsion(v, context_->body->value(positions.row(v).transpose()) > 0.0);
@@ -168,11 +210,9 @@ StepRecord BatchArrangement::run(ArrangeStep step, int visit, Eigen::MatrixX3d& 
     case ArrangeStep::RemoveBodyIntersections: {
       // §7.2: sewing boundary vertices are already outside the body; the rest of the batch follows
       // ring by ring, like a garment being put on.
-      objective.add(context_->body_repulsion);
       ActiveSet active = domain_now.active;
-      const int deepest = *std::max_element(batch_ring_.begin(), batch_ring_.end());
-      for (int reach = 0; reach <= deepest && !record.cancelled;
-           reach += parameters.rings_per_round) {
+      for (int round = 0; round < body_rounds && !record.cancelled; ++round) {
+        const int reach = round * parameters.rings_per_round;
         for (int v : vertices_)
           active.set_body_repulsion(v, batch_ring_[v] >= 0 && batch_ring_[v] <= reach);
         objective.set_active_set(active);
@@ -185,24 +225,7 @@ StepRecord BatchArrangement::run(ArrangeStep step, int visit, Eigen::MatrixX3d& 
       break;
     }
     case ArrangeStep::Refine: {
-      objective.add(context_->body_repulsion);
-      // Eq. 12: the batch stays outside the arranged pieces. Vertices on the seam and next to it
-      // are held by sewing at the partner's triangles; repelling them would only fight the seam.
-      std::vector<int> repelled;
-      for (int v : vertices_)
-        if (batch_ring_[v] < 0 || batch_ring_[v] > 1) repelled.push_back(v);
-      std::vector<int> obstacles;
-      for (int t = 0; t < context_->garment.triangle_count(); ++t)
-        if (arranged_[context_->garment.triangle_piece(t)]) obstacles.push_back(t);
-      if (!obstacles.empty() && !repelled.empty()) {
-        SelfRepulsionSettings self;
-        self.stiffness = energy.self_repulsion_stiffness;
-        self.buffer = energy.repulsion_buffer;
-        self.search_radius = energy.self_repulsion_search_radius;
-        self.refresh_interval = energy.self_repulsion_refresh_interval;
-        objective.add(std::make_shared<SelfRepulsionPotential>(context_->garment.triangles,
-                                                               repelled, obstacles, self));
-      }
+      add_self_repulsion(objective);
       solve_with(objective, parameters.refine.iterations(visit), "refine", positions, observer,
                  on_iterate, record);
       context_->gravity->set_acceleration(energy.gravity * energy.mild_gravity_factor);
@@ -212,8 +235,7 @@ StepRecord BatchArrangement::run(ArrangeStep step, int visit, Eigen::MatrixX3d& 
       break;
     }
   }
-  record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return record;
+  return finish();
 }
 
 }  // namespace garment

@@ -65,6 +65,8 @@ class BatchArrangement {
     std::vector<int> softly_fixed;  // arranged vertices held by F^ext
   };
   void update_rings();
+  // Eq. 12 one-sided repulsion of the batch against the arranged triangles.
+  void add_self_repulsion(Objective& objective) const;
   Domain domain(int rings_free, int rings_fixed_beyond) const;
   int solve_with(Objective& objective, int iterations, const char* stage,
                  Eigen::MatrixX3d& positions, Observer* observer, const IterateCallback& on_iterate,

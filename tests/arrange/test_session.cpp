@@ -8,7 +8,8 @@
 // - restore(i) gives back checkpoint i exactly (positions, phase) and drops the later ones;
 // - reorder() with the order already arranged leaves the state unchanged at batch boundaries,
 //   in the middle of a batch and at the end;
-// - a cancelled step leaves the session as before the step, and it continues from there.
+// - a cancelled step leaves the session as before the step, and it continues from there;
+// - without phases (the ablation) the align step does the whole batch's solve.
 
 #include <QtTest>
 
@@ -243,6 +244,32 @@ class SessionTest : public QObject {
     QCOMPARE(revisited, static_cast<int>(in_time.batches.size()));
     QCOMPARE(skipped, static_cast<int>(out_of_time.batches.size()));
     QCOMPARE(out_of_time.order.size(), in_time.order.size());
+  }
+
+  void without_phases_the_align_step_solves_everything() {
+    // The phasing ablation (bench_pipeline): one solve per visit, in the align step, with the
+    // three steps' budgets summed; the two later steps do nothing.
+    const auto run = [&](bool phased) {
+      SessionOptions options = small_options();
+      options.arrangement.phased = phased;
+      Session session(scene_, options);
+      session.run();
+      std::map<Phase, int> iterations;
+      for (const PhaseRecord& record : session.report().phases)
+        iterations[record.phase] += record.iterations;
+      return std::pair{iterations, session.positions().allFinite()};
+    };
+    auto [phased, phased_finite] = run(true);
+    auto [at_once, at_once_finite] = run(false);
+    QVERIFY(phased_finite && at_once_finite);
+    QVERIFY(phased[Phase::RemoveBodyIntersections] > 0);
+    QVERIFY(phased[Phase::Refine] > 0);
+    QCOMPARE(at_once[Phase::RemoveBodyIntersections], 0);
+    QCOMPARE(at_once[Phase::Refine], 0);
+    QVERIFY2(at_once[Phase::Align] > phased[Phase::Align],
+             qPrintable(QString("align iterations: %1 at once, %2 phased")
+                            .arg(at_once[Phase::Align])
+                            .arg(phased[Phase::Align])));
   }
 
   void restore_gives_back_the_checkpoint_exactly() {
