@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -75,29 +76,54 @@ std::vector<PolygonCrossing> polygon_crossings(const std::vector<Eigen::Vector2d
   const int n = static_cast<int>(polygon.size());
   if (n < 4) return crossings;
   const auto segment_end = [&](int i) -> const Eigen::Vector2d& { return polygon[(i + 1) % n]; };
-  Eigen::Vector2d lower = polygon[0], upper = polygon[0];
-  for (const auto& p : polygon) {
-    lower = lower.cwiseMin(p);
-    upper = upper.cwiseMax(p);
-  }
-  const Eigen::Vector2d extent = (upper - lower).cwiseMax(1e-12);
-  const int cells_per_side =
-      std::clamp(static_cast<int>(std::sqrt(static_cast<double>(n))), 1, 2048);
-  const Eigen::Vector2d cell_size = extent / cells_per_side;
-  const auto cell_of = [&](const Eigen::Vector2d& p) {
-    const int x =
-        std::clamp(static_cast<int>((p.x() - lower.x()) / cell_size.x()), 0, cells_per_side - 1);
-    const int y =
-        std::clamp(static_cast<int>((p.y() - lower.y()) / cell_size.y()), 0, cells_per_side - 1);
-    return Eigen::Vector2i(x, y);
-  };
-  std::vector<std::vector<int>> cells(static_cast<std::size_t>(cells_per_side) * cells_per_side);
+  Eigen::Vector2d lower = polygon[0];
+  double perimeter = 0.0;
   for (int i = 0; i < n; ++i) {
-    const Eigen::Vector2i from = cell_of(polygon[i].cwiseMin(segment_end(i)));
-    const Eigen::Vector2i to = cell_of(polygon[i].cwiseMax(segment_end(i)));
-    for (int x = from.x(); x <= to.x(); ++x)
-      for (int y = from.y(); y <= to.y(); ++y)
-        cells[static_cast<std::size_t>(x) * cells_per_side + y].push_back(i);
+    lower = lower.cwiseMin(polygon[i]);
+    perimeter += (segment_end(i) - polygon[i]).norm();
+  }
+  // Cells the size of the mean segment, keyed sparsely: an outline is a curve, so a grid sized by
+  // its bounding box would put √n segments in each cell it crosses and test them pairwise (a
+  // 10⁶-point circle: 10⁸ pairs). Each segment is cut into pieces no longer than a cell and
+  // registered in the few cells its box covers.
+  const double cell_size = std::max(perimeter / n, 1e-12);
+  const double margin = 1e-6 * cell_size;
+  const auto cell_index = [&](double value, double origin) {
+    return static_cast<std::int64_t>(std::floor((value - origin) / cell_size));
+  };
+  std::vector<std::pair<std::int64_t, int>> entries;  // (cell key, segment)
+  entries.reserve(static_cast<std::size_t>(4 * n));
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d &a = polygon[i], &b = segment_end(i);
+    const int pieces =
+        static_cast<int>(std::clamp(std::ceil((b - a).norm() / cell_size), 1.0, 1e7));
+    for (int k = 0; k < pieces; ++k) {
+      const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(k) / pieces);
+      const Eigen::Vector2d q = a + (b - a) * (static_cast<double>(k + 1) / pieces);
+      // Widened by a hair: the pieces' ends are rounded, and a touching point on a cell's border
+      // must land in a cell of both segments.
+      const Eigen::Vector2d from = p.cwiseMin(q).array() - margin;
+      const Eigen::Vector2d to = p.cwiseMax(q).array() + margin;
+      for (std::int64_t x = cell_index(from.x(), lower.x()); x <= cell_index(to.x(), lower.x());
+           ++x)
+        for (std::int64_t y = cell_index(from.y(), lower.y()); y <= cell_index(to.y(), lower.y());
+             ++y)
+          entries.emplace_back((x << 32) ^ y, i);
+    }
+  }
+  std::sort(entries.begin(), entries.end());
+  entries.erase(std::unique(entries.begin(), entries.end()), entries.end());
+  std::vector<std::vector<int>> cells;
+  for (std::size_t e = 0; e < entries.size();) {
+    std::size_t next = e;
+    while (next < entries.size() && entries[next].first == entries[e].first)
+      ++next;
+    if (next - e > 1) {
+      cells.emplace_back();
+      for (std::size_t k = e; k < next; ++k)
+        cells.back().push_back(entries[k].second);
+    }
+    e = next;
   }
   std::set<std::pair<int, int>> found;
   for (const auto& cell : cells) {

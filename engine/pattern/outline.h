@@ -28,7 +28,7 @@ void validate_outline(const Pattern& pattern, int panel_index, const PanelOutlin
 // neighbour. Crossings that only cut off a sliver thinner than `sliver_tolerance` (metres; the loop
 // between the two crossing segments, or its complement, has 2·area/perimeter below it) are ignored:
 // real GarmentCode outlines touch themselves within a fraction of a millimetre, e.g. a dart tip on
-// the neckline. Uses a uniform grid, so large polygons stay near linear time.
+// the neckline. Near linear time: a sparse grid of cells the size of the mean segment.
 std::optional<std::pair<int, int>> find_polygon_self_intersection(
     const std::vector<Eigen::Vector2d>& polygon, double sliver_tolerance = 0.0);
 
