@@ -1,12 +1,137 @@
 #include "engine/arrange/post_process.h"
 
 #include <chrono>
+#include <numeric>
 
 #include "engine/arrange/session.h"
+#include "engine/arrange/untangle.h"
+#include "engine/core/mesh_topology.h"
 #include "engine/energy/objective.h"
 #include "engine/energy/self_repulsion_potential.h"
+#include "engine/quality/exact_intersections.h"
+#include "engine/quality/garment_metrics.h"
 
 namespace garment {
+
+namespace {
+
+// Rings of cloth round the first contacts that untangling passes look at again (see below).
+constexpr int kUntangleRegionRings = 8;
+
+// Pieces still through each other after the settle (those of one batch, or a seed wrapped tangled:
+// the layering only orders batches) are pulled apart along their intersection contours
+// (untangle.h), a few solver iterations after each pass letting the cloth around them follow. The
+// passes stop once no contact is left, or when the count has not improved for a while; a garment
+// still tangled then gets back its positions from before the passes, which moved crossing
+// vertices only and would leave it worse elsewhere (folds, open seams) for nothing.
+void untangle(ArrangementContext& context, const std::vector<bool>& arranged, Objective& objective,
+              SolverSettings settings, Eigen::MatrixX3d& positions, Observer* observer,
+              PostProcessReport& result) {
+  const Garment& garment = context.garment;
+  const ArrangementParameters& parameters = context.parameters;
+  const MeshEdges mesh = build_mesh_edges(garment.triangles, garment.vertex_count());
+  const Eigen::VectorXi welded = weld_seams_and_darts(garment);
+  Eigen::VectorXi vertex_piece(garment.vertex_count());
+  for (int v = 0; v < garment.vertex_count(); ++v)
+    vertex_piece(v) = garment.vertex_piece(v);
+  // Contacts among arranged pieces, between the given edges (rows of mesh.edges) and triangles.
+  const auto arranged_contacts = [&](const std::vector<int>& edges,
+                                     const std::vector<int>& triangles) {
+    Eigen::MatrixX2i edge_rows(edges.size(), 2);
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      edge_rows.row(e) = mesh.edges.row(edges[e]);
+    Eigen::MatrixX3i triangle_rows(triangles.size(), 3);
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+      triangle_rows.row(t) = garment.triangles.row(triangles[t]);
+    std::vector<Eigen::Vector2i> contacts;
+    for (const Eigen::Vector2i& found :
+         edge_triangle_contacts(positions, edge_rows, triangle_rows, welded)) {
+      const Eigen::Vector2i contact(edges[found.x()], triangles[found.y()]);
+      if (arranged[vertex_piece(mesh.edges(contact.x(), 0))] &&
+          arranged[garment.triangle_piece(contact.y())])
+        contacts.push_back(contact);
+    }
+    return contacts;
+  };
+  std::vector<int> all_edges(mesh.edges.rows()), all_triangles(garment.triangle_count());
+  std::iota(all_edges.begin(), all_edges.end(), 0);
+  std::iota(all_triangles.begin(), all_triangles.end(), 0);
+  std::vector<Eigen::Vector2i> contacts = arranged_contacts(all_edges, all_triangles);
+  result.initial_contacts = result.final_contacts = static_cast<int>(contacts.size());
+  if (contacts.empty() || result.initial_contacts > parameters.post_process_untangle_max_contacts)
+    return;
+
+  // The passes move the contacts' vertices and the few solver iterations barely move the rest:
+  // between passes only the cloth near the first contacts is looked at again, and the whole
+  // garment once at the end.
+  std::vector<int> sources;
+  for (const Eigen::Vector2i& contact : contacts) {
+    sources.insert(sources.end(), {mesh.edges(contact.x(), 0), mesh.edges(contact.x(), 1)});
+    for (int k = 0; k < 3; ++k)
+      sources.push_back(garment.triangles(contact.y(), k));
+  }
+  const std::vector<int> ring = context.graph.rings(
+      sources, std::vector<char>(garment.vertex_count(), 1), kUntangleRegionRings);
+  const auto near = [&](int v) { return ring[v] >= 0; };
+  std::vector<int> region_edges, region_triangles;
+  for (int e : all_edges)
+    if (near(mesh.edges(e, 0)) && near(mesh.edges(e, 1))) region_edges.push_back(e);
+  for (int t : all_triangles)
+    if (near(garment.triangles(t, 0)) && near(garment.triangles(t, 1)) &&
+        near(garment.triangles(t, 2)))
+      region_triangles.push_back(t);
+
+  const Eigen::MatrixX3d settled = positions;
+  const double settled_energy = result.final_energy;
+  settings.max_iterations = parameters.post_process_untangle_iterations;
+  settings.stage = "post-process: untangle";
+  std::size_t fewest = contacts.size();
+  for (int pass = 0, since_fewest = 0;
+       pass < parameters.post_process_untangle_passes && !contacts.empty() &&
+       since_fewest < parameters.post_process_untangle_patience;
+       ++pass) {
+    const Eigen::MatrixX3d displacement =
+        contour_minimizing_displacement(positions, garment.triangles, mesh, vertex_piece, contacts,
+                                        parameters.post_process_untangle_step);
+    for (int v = 0; v < garment.vertex_count(); ++v)
+      if (objective.active_set().role(v) == VertexRole::Free)
+        positions.row(v) += displacement.row(v);
+    ++result.untangle_passes;
+    const SolveReport solved = solve(objective, positions, settings, observer);
+    result.iterations += solved.iterations;
+    result.final_energy = solved.final_energy;
+    if (solved.reason == StopReason::Cancelled) break;
+    contacts = arranged_contacts(region_edges, region_triangles);
+    if (contacts.size() < fewest) {
+      fewest = contacts.size();
+      since_fewest = 0;
+    } else {
+      ++since_fewest;
+    }
+  }
+  if (contacts.empty()) contacts = arranged_contacts(all_edges, all_triangles);
+  result.final_contacts = static_cast<int>(contacts.size());
+  if (!contacts.empty()) {
+    positions = settled;
+    result.final_energy = settled_energy;
+    result.final_contacts = result.initial_contacts;
+    return;
+  }
+  // Untangled: the cloth round the moved vertices settles, and keeps the settled shape unless the
+  // pieces found their way back through each other.
+  const Eigen::MatrixX3d untangled = positions;
+  settings.max_iterations = parameters.post_process_untangle_settle_iterations;
+  const SolveReport solved = solve(objective, positions, settings, observer);
+  result.iterations += solved.iterations;
+  if (solved.reason != StopReason::Cancelled &&
+      arranged_contacts(region_edges, region_triangles).empty() &&
+      arranged_contacts(all_edges, all_triangles).empty())
+    result.final_energy = solved.final_energy;
+  else
+    positions = untangled;
+}
+
+}  // namespace
 
 PostProcessReport post_process(ArrangementContext& context, const SessionReport& report,
                                const std::vector<bool>& arranged, Eigen::MatrixX3d& positions,
@@ -77,9 +202,12 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   settings.max_iterations = parameters.post_process_iterations;
   settings.stage = "post-process";
   settings.on_iterate = on_iterate;
-  const SolveReport solved = solve(objective, positions, settings, observer);
+  SolveReport solved = solve(objective, positions, settings, observer);
   result.iterations = solved.iterations;
   result.final_energy = solved.final_energy;
+
+  if (parameters.post_process_untangle_passes > 0 && solved.reason != StopReason::Cancelled)
+    untangle(context, arranged, objective, settings, positions, observer, result);
 
   // The shared potentials go back to their arrangement strengths.
   context.sewing->set_stiffness(energy.sewing_stiffness);

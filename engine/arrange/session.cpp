@@ -289,6 +289,7 @@ void Session::run_post_process(SessionObserver* observer) {
       post_process(*context_, state_.report, state_.arranged, state_.positions, &forward,
                    live_snapshots(observer, Phase::PostProcess, &iterations));
   state_.report.phases.push_back({Phase::PostProcess, -1, 0, report.iterations, report.seconds});
+  state_.report.post_process = report;
   state_.phase = Phase::Done;
 }
 

@@ -20,6 +20,7 @@
 
 #include "engine/arrange/arrangement_parameters.h"
 #include "engine/arrange/batch_arrangement.h"
+#include "engine/arrange/post_process.h"
 #include "engine/arrange/scene.h"
 #include "engine/arrange/termination.h"
 #include "engine/core/observer.h"
@@ -62,6 +63,7 @@ struct SessionReport {
   std::vector<int> order;  // pieces in the order they were arranged
   std::vector<BatchRecord> batches;
   std::vector<PhaseRecord> phases;
+  PostProcessReport post_process;  // once it has run
   double seconds = 0.0;
   bool cancelled = false;
 };

@@ -66,6 +66,12 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_gravity_factor", p.post_process_gravity_factor);
   visit("post_process_strain_limit", p.post_process_strain_limit);
   visit("post_process_strain_limit_factor", p.post_process_strain_limit_factor);
+  visit("post_process_untangle_passes", p.post_process_untangle_passes);
+  visit("post_process_untangle_step", p.post_process_untangle_step);
+  visit("post_process_untangle_iterations", p.post_process_untangle_iterations);
+  visit("post_process_untangle_patience", p.post_process_untangle_patience);
+  visit("post_process_untangle_max_contacts", p.post_process_untangle_max_contacts);
+  visit("post_process_untangle_settle_iterations", p.post_process_untangle_settle_iterations);
 }
 
 // `key` as written ("energy.stretch_stiffness") or as nested objects ({"energy": {...}}).

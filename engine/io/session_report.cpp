@@ -73,6 +73,10 @@ std::string session_report_json(const Session& session, const GarmentMetrics& me
   for (const BatchRecord& batch : report.batches)
     revisits += static_cast<int>(batch.revisits.size());
   json["revisits"] = revisits;
+  json["post_process"] = {{"iterations", report.post_process.iterations},
+                          {"untangle_passes", report.post_process.untangle_passes},
+                          {"contacts_before_untangling", report.post_process.initial_contacts},
+                          {"contacts_after_untangling", report.post_process.final_contacts}};
   json["seconds"] = report.seconds;
   json["cancelled"] = report.cancelled;
   json["quality"] = nlohmann::json::parse(quality_json(garment, metrics, verdict));

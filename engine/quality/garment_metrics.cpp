@@ -31,18 +31,6 @@ void join(std::vector<int>& parent, int a, int b) {
   if (a != b) parent[std::max(a, b)] = std::min(a, b);
 }
 
-// Sewing pairs (welded_vertices) plus dart pairs: a closed dart is a seam too.
-Eigen::VectorXi weld_seams_and_darts(const Garment& garment) {
-  const Eigen::VectorXi sewn = welded_vertices(garment);
-  std::vector<int> parent(sewn.data(), sewn.data() + sewn.size());
-  for (Eigen::Index k = 0; k < garment.dart_pairs.rows(); ++k)
-    join(parent, garment.dart_pairs(k, 0), garment.dart_pairs(k, 1));
-  Eigen::VectorXi welded(garment.vertex_count());
-  for (int v = 0; v < garment.vertex_count(); ++v)
-    welded(v) = find_root(parent, v);
-  return welded;
-}
-
 // Whether triangle `triangle` (welded corner ids) runs from u to v along its winding.
 bool runs_forward(const Eigen::Vector3i& triangle, int u, int v) {
   for (int k = 0; k < 3; ++k)
@@ -58,6 +46,17 @@ bool normal_dot(const Eigen::MatrixX3d& normals, int t0, int t1, double& dot) {
 }
 
 }  // namespace
+
+Eigen::VectorXi weld_seams_and_darts(const Garment& garment) {
+  const Eigen::VectorXi sewn = welded_vertices(garment);
+  std::vector<int> parent(sewn.data(), sewn.data() + sewn.size());
+  for (Eigen::Index k = 0; k < garment.dart_pairs.rows(); ++k)
+    join(parent, garment.dart_pairs(k, 0), garment.dart_pairs(k, 1));
+  Eigen::VectorXi welded(garment.vertex_count());
+  for (int v = 0; v < garment.vertex_count(); ++v)
+    welded(v) = find_root(parent, v);
+  return welded;
+}
 
 GarmentChecker::GarmentChecker(const Garment& garment, const BodyReference* body,
                                std::vector<ExpectedRegion> regions)

@@ -97,6 +97,10 @@ class GarmentChecker {
   std::vector<Eigen::Vector2i> seam_neighbours_;  // triangle pairs adjacent by sewing only
 };
 
+// #V class of each vertex with its seam and dart partners welded (welded_vertices plus the dart
+// pairs: a closed dart is a seam too); triangles sharing a class count as adjacent.
+Eigen::VectorXi weld_seams_and_darts(const Garment& garment);
+
 // One-off measurement (builds a checker).
 GarmentMetrics measure_garment(const Garment& garment, const Eigen::MatrixX3d& positions,
                                const BodyReference* body,
