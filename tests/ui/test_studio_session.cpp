@@ -45,14 +45,14 @@ namespace {
 SessionOptions quick_options() {
   SessionOptions options;
   ArrangementParameters& p = options.arrangement;
-  p.align = {40, 60};
-  p.body_round = {8, 12};
-  p.body_final = {30, 40};
-  p.refine = {40, 60};
-  p.settle = {30, 40};
+  p.align = {20, 30};
+  p.body_round = {4, 6};
+  p.body_final = {15, 20};
+  p.refine = {20, 30};
+  p.settle = {15, 20};
   p.max_flatten_revisits = 0;
-  p.seed_iterations = 120;
-  p.post_process_iterations = 120;
+  p.seed_iterations = 60;
+  p.post_process_iterations = 60;
   return options;
 }
 
