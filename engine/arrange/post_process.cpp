@@ -123,9 +123,7 @@ void untangle(ArrangementContext& context, const std::vector<bool>& arranged, Ob
   settings.max_iterations = parameters.post_process_untangle_settle_iterations;
   const SolveReport solved = solve(objective, positions, settings, observer);
   result.iterations += solved.iterations;
-  if (solved.reason != StopReason::Cancelled &&
-      arranged_contacts(region_edges, region_triangles).empty() &&
-      arranged_contacts(all_edges, all_triangles).empty())
+  if (solved.reason != StopReason::Cancelled && arranged_contacts(all_edges, all_triangles).empty())
     result.final_energy = solved.final_energy;
   else
     positions = untangled;

@@ -55,13 +55,13 @@ Eigen::MatrixX3d contour_minimizing_displacement(const Eigen::MatrixX3d& positio
   // sheet with the lower id (the relative motion that shortens the whole contour).
   std::vector<Eigen::Vector3d> gradients(contacts.size(), Eigen::Vector3d::Zero());
   std::map<std::array<int, 3>, Eigen::Vector3d> contour_direction;
-  const auto contour_key = [&](std::size_t c) {
+  std::vector<std::array<int, 3>> keys(contacts.size());  // contour root, lower and higher sheet
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
     const int edge_sheet = vertex_sheet(mesh.edges(contacts[c].x(), 0));
     const int triangle_sheet = vertex_sheet(triangles(contacts[c].y(), 0));
-    return std::array<int, 3>{root(mesh.edges(contacts[c].x(), 0)),
-                              std::min(edge_sheet, triangle_sheet),
-                              std::max(edge_sheet, triangle_sheet)};
-  };
+    keys[c] = {root(mesh.edges(contacts[c].x(), 0)), std::min(edge_sheet, triangle_sheet),
+               std::max(edge_sheet, triangle_sheet)};
+  }
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const int edge = contacts[c].x(), triangle = contacts[c].y();
     const Eigen::Vector3d a = positions.row(mesh.edges(edge, 0));
@@ -90,7 +90,7 @@ Eigen::MatrixX3d contour_minimizing_displacement(const Eigen::MatrixX3d& positio
     const double length = gradient.norm();
     if (!(length > 0.0)) continue;
     gradients[c] = gradient / length;
-    const std::array<int, 3> key = contour_key(c);
+    const std::array<int, 3>& key = keys[c];
     const bool edge_first = vertex_sheet(mesh.edges(edge, 0)) == key[1];
     auto [entry, inserted] = contour_direction.try_emplace(key, Eigen::Vector3d::Zero());
     entry->second += edge_first ? gradients[c] : Eigen::Vector3d(-gradients[c]);
@@ -99,7 +99,7 @@ Eigen::MatrixX3d contour_minimizing_displacement(const Eigen::MatrixX3d& positio
   Eigen::MatrixX3d direction = Eigen::MatrixX3d::Zero(positions.rows(), 3);
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     if (gradients[c].isZero()) continue;
-    const std::array<int, 3> key = contour_key(c);
+    const std::array<int, 3>& key = keys[c];
     // Within one sheet there is no second side to move against: the contact's own G.
     Eigen::Vector3d edge_side = gradients[c];
     if (key[1] != key[2]) {
