@@ -6,6 +6,7 @@
 #include "engine/arrange/session.h"
 #include "engine/arrange/untangle.h"
 #include "engine/core/mesh_topology.h"
+#include "engine/energy/body_edge_repulsion_potential.h"
 #include "engine/energy/objective.h"
 #include "engine/energy/self_repulsion_potential.h"
 #include "engine/quality/exact_intersections.h"
@@ -148,6 +149,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   context.sewing->set_stiffness(energy.sewing_stiffness * parameters.post_process_sewing_factor);
   context.body_repulsion->set_stiffness(energy.body_repulsion_stiffness *
                                         parameters.post_process_repulsion_factor);
+  context.body_repulsion->set_buffer(parameters.post_process_body_buffer);
   context.gravity->set_acceleration(energy.gravity * parameters.post_process_gravity_factor);
   context.stretch->set_strain_limit(parameters.post_process_strain_limit,
                                     parameters.post_process_strain_limit_factor);
@@ -157,6 +159,12 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
       .add(context.sewing)
       .add(context.body_repulsion)
       .add(context.gravity);
+  if (parameters.post_process_edge_repulsion_factor > 0.0)
+    objective.add(std::make_shared<BodyEdgeRepulsionPotential>(
+        context.body, build_mesh_edges(garment.triangles, garment.vertex_count()).edges,
+        energy.body_repulsion_stiffness * parameters.post_process_repulsion_factor *
+            parameters.post_process_edge_repulsion_factor,
+        parameters.post_process_body_buffer));
 
   // Layers in arrangement order: the seed, then each batch, outside everything before it. Vertices
   // on and next to a seam with an earlier layer are held by the seam instead (see
@@ -210,6 +218,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   // The shared potentials go back to their arrangement strengths.
   context.sewing->set_stiffness(energy.sewing_stiffness);
   context.body_repulsion->set_stiffness(energy.body_repulsion_stiffness);
+  context.body_repulsion->set_buffer(energy.repulsion_buffer);
   context.stretch->clear_strain_limit();
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -6,12 +6,19 @@ namespace garment {
 
 BodyRepulsionPotential::BodyRepulsionPotential(std::shared_ptr<const DistanceGrid> body,
                                                double stiffness, double buffer)
-    : body_(std::move(body)), stiffness_(stiffness), buffer_(buffer) {
+    : body_(std::move(body)), stiffness_(stiffness) {
   if (!body_) throw std::invalid_argument("BodyRepulsionPotential: no body");
+  set_buffer(buffer);
 }
 
 void BodyRepulsionPotential::set_stiffness(double stiffness) {
   stiffness_ = stiffness;
+  changed();
+}
+
+void BodyRepulsionPotential::set_buffer(double buffer) {
+  if (!(buffer > 0.0)) throw std::invalid_argument("BodyRepulsionPotential: buffer ≤ 0");
+  buffer_ = buffer;
   changed();
 }
 

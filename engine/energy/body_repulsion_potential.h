@@ -21,6 +21,8 @@ class BodyRepulsionPotential : public Potential {
   BodyRepulsionPotential(std::shared_ptr<const DistanceGrid> body, double stiffness, double buffer);
 
   void set_stiffness(double stiffness);
+  // The buffer ε, m (> 0).
+  void set_buffer(double buffer);
 
   const char* name() const override { return "body repulsion"; }
   int element_count() const override { return static_cast<int>(active_.size()); }

@@ -64,6 +64,8 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_sewing_factor", p.post_process_sewing_factor);
   visit("post_process_repulsion_factor", p.post_process_repulsion_factor);
   visit("post_process_gravity_factor", p.post_process_gravity_factor);
+  visit("post_process_body_buffer", p.post_process_body_buffer);
+  visit("post_process_edge_repulsion_factor", p.post_process_edge_repulsion_factor);
   visit("post_process_strain_limit", p.post_process_strain_limit);
   visit("post_process_strain_limit_factor", p.post_process_strain_limit_factor);
   visit("post_process_untangle_passes", p.post_process_untangle_passes);
@@ -119,6 +121,10 @@ void apply_parameters_json(const std::string& json_text, const std::string& sour
   for (const std::string& key : present)
     if (std::find(known.begin(), known.end(), key) == known.end())
       throw_input_error(source, key, "unknown parameter");
+  if (!(parameters.post_process_body_buffer > 0.0))
+    throw_input_error(source, "post_process_body_buffer", "must be more than 0");
+  if (!(parameters.post_process_edge_repulsion_factor >= 0.0))
+    throw_input_error(source, "post_process_edge_repulsion_factor", "must be at least 0 (0: off)");
   if (!(parameters.post_process_strain_limit >= 0.0))
     throw_input_error(source, "post_process_strain_limit", "must be at least 0");
   if (!(parameters.post_process_strain_limit_factor >= 1.0))

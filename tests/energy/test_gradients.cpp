@@ -4,10 +4,10 @@
 // Gradient: central differences of the energy over every free coordinate, relative error
 // |g_fd − g| / |g| ≤ 1e-5. Hessian diagonal: central differences of the gradient. Exact diagonals
 // (relative error ≤ 1e-4): bending, sewing, fixing, centring (quadratic), gravity and upward
-// (linear: zero), body distance and body repulsion (trilinear field: zero pure second
-// derivatives inside a cell, the switch held), self repulsion (contacts held between refreshes),
-// stretch for springs at or beyond their rest length. For compressed springs the stretch
-// diagonal is the PSD projection: at least the exact one.
+// (linear: zero), body distance and body (vertex and edge) repulsion (trilinear field: zero pure
+// second derivatives inside a cell, the switch held), self repulsion (contacts held between
+// refreshes), stretch for springs at or beyond their rest length. For compressed springs the
+// stretch diagonal is the PSD projection: at least the exact one.
 
 #include <QtTest>
 
@@ -15,8 +15,10 @@
 #include <random>
 
 #include "energy/analytic_distance_grid.h"
+#include "engine/core/mesh_topology.h"
 #include "engine/energy/bending_potential.h"
 #include "engine/energy/body_distance_potential.h"
+#include "engine/energy/body_edge_repulsion_potential.h"
 #include "engine/energy/body_repulsion_potential.h"
 #include "engine/energy/centring_potential.h"
 #include "engine/energy/fixing_potential.h"
@@ -289,6 +291,14 @@ class EnergyGradientsTest : public QObject {
     expect_exact(
         "body repulsion",
         check(std::make_shared<BodyRepulsionPotential>(sphere_, 1e4, 0.004), active_, state_));
+  }
+
+  void body_edge_repulsion() {
+    const Eigen::MatrixX2i edges =
+        build_mesh_edges(garment_.triangles, garment_.vertex_count()).edges;
+    expect_exact("body edge repulsion",
+                 check(std::make_shared<BodyEdgeRepulsionPotential>(sphere_, edges, 2.5e3, 0.004),
+                       active_, state_));
   }
 
   void self_repulsion() {

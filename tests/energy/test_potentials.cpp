@@ -1,6 +1,7 @@
 // Properties of the potentials and the assembler beyond their derivatives: the bending model's
 // invariants (zero on affine images of the flat rest shape and across a flat seam, the continuum
-// limit on a cylinder), the element rule of the ActiveSet, the body-distance switch, the
+// limit on a cylinder), the element rule of the ActiveSet, the body-distance switch, edge
+// repulsion catching an edge that cuts a curved body between two ends held outside it, the
 // direction of self repulsion, and that the assembled energy is the sum of the potentials'
 // energies whatever the number of threads.
 
@@ -15,6 +16,7 @@
 #include "energy/analytic_distance_grid.h"
 #include "engine/energy/bending_potential.h"
 #include "engine/energy/body_distance_potential.h"
+#include "engine/energy/body_edge_repulsion_potential.h"
 #include "engine/energy/body_repulsion_potential.h"
 #include "engine/energy/closest_triangle_grid.h"
 #include "engine/energy/gravity_potential.h"
@@ -178,6 +180,43 @@ class PotentialsTest : public QObject {
     x.col(0) = 0.4 - x.col(0).array();
     QCOMPARE(energy_of(distance, active, x, &gradient), 0.0);
     QCOMPARE(gradient.norm(), 0.0);
+  }
+
+  void edgeRepulsionCatchesAChordThroughACurvedBody() {
+    // A sphere of radius 10 cm and a 10 cm edge whose ends sit 5 mm outside it: vertex repulsion
+    // (buffer 4 mm) sees nothing, but the chord's middle is 0.1 − sqrt(0.105² − 0.05²) = 7.7 mm
+    // inside the sphere.
+    const double radius = 0.1;
+    auto sphere = std::make_shared<DistanceGrid>(
+        test::sphere_distance_grid(Eigen::Vector3d::Zero(), radius, 0.05, 0.002));
+    const double half = 0.05, out = radius + 0.005;
+    Eigen::MatrixX3d x(2, 3);
+    x << -half, std::sqrt(out * out - half * half), 0.0, half, std::sqrt(out * out - half * half),
+        0.0;
+    Eigen::MatrixX2i edge(1, 2);
+    edge << 0, 1;
+    ActiveSet active(2, VertexRole::Free);
+    Objective vertices(active), edges(active);
+    vertices.add(std::make_shared<BodyRepulsionPotential>(sphere, 1e4, 0.004));
+    edges.add(std::make_shared<BodyEdgeRepulsionPotential>(sphere, edge, 1e4, 0.004));
+    Eigen::MatrixX3d vertex_gradient, edge_gradient;
+    const double vertex_energy = vertices.evaluate(x, &vertex_gradient, nullptr);
+    const double edge_energy = edges.evaluate(x, &edge_gradient, nullptr);
+    qInfo("chord 10 cm, ends 5 mm out of a 10 cm sphere: vertex energy %.3g J, edge energy %.3g J",
+          vertex_energy, edge_energy);
+    QCOMPARE(vertex_energy, 0.0);
+    QVERIFY(edge_energy > 0.0);
+    // Both ends pushed the same way, away from the centre (+y), with no force along the edge
+    // that could stretch it (up to the trilinear field's one-sided difference across the cell
+    // at x = 0, about h / 2r = 1 % of the normal component).
+    for (int v = 0; v < 2; ++v) {
+      QVERIFY(edge_gradient(v, 1) < 0.0);
+      QVERIFY(std::abs(edge_gradient(v, 0)) <= 0.02 * std::abs(edge_gradient(v, 1)));
+    }
+    QVERIFY((edge_gradient.row(0) - edge_gradient.row(1)).norm() <= 1e-9 * edge_gradient.norm());
+    // Moved 12 mm further out, the middle (4.3 mm out) clears the buffer.
+    x.col(1).array() += 0.012;
+    QCOMPARE(edges.evaluate(x, nullptr, nullptr), 0.0);
   }
 
   void selfRepulsionPushesAlongTheObstacleNormal() {

@@ -65,6 +65,14 @@ class ParametersJsonTest : public QObject {
     QVERIFY(error_of(R"({"post_process_strain_limit_factor": 1})").isEmpty());
   }
 
+  void outOfRangeBodyBufferNamesTheKey() {
+    const QString buffer = error_of(R"({"post_process_body_buffer": 0})");
+    QVERIFY2(buffer.contains("post_process_body_buffer"), qPrintable(buffer));
+    const QString edges = error_of(R"({"post_process_edge_repulsion_factor": -1})");
+    QVERIFY2(edges.contains("post_process_edge_repulsion_factor"), qPrintable(edges));
+    QVERIFY(error_of(R"({"post_process_edge_repulsion_factor": 0})").isEmpty());
+  }
+
   void reportedParametersReadBack() {
     ArrangementParameters changed;
     changed.energy.bending_stiffness = 0.004;
