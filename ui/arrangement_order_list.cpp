@@ -53,7 +53,7 @@ void ArrangementOrderList::movePiece(int from, int to) {
   insertItem(insert_row, moved);
   setCurrentItem(moved);
   renumber();
-  emit orderChanged(order());
+  Q_EMIT orderChanged(order());
 }
 
 int ArrangementOrderList::dropRow(const QPoint& viewport_position) const {

@@ -575,7 +575,7 @@ void AvatarView::mouseReleaseEvent(QMouseEvent* event) {
   }
   if (selection == selected_) return;
   setSelectedPieces(selection);
-  emit pieceSelectionChanged(selected_);
+  Q_EMIT pieceSelectionChanged(selected_);
 }
 
 void AvatarView::wheelEvent(QWheelEvent* event) {

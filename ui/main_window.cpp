@@ -79,11 +79,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
   connect(pattern_view_, &PatternView::pieceSelectionChanged, this, [this](const QList<int>& p) {
     avatar_view_->setSelectedPieces(p);
-    emit pieceSelectionChanged(p);
+    Q_EMIT pieceSelectionChanged(p);
   });
   connect(avatar_view_, &AvatarView::pieceSelectionChanged, this, [this](const QList<int>& p) {
     pattern_view_->setSelectedPieces(p);
-    emit pieceSelectionChanged(p);
+    Q_EMIT pieceSelectionChanged(p);
   });
 
   error_presenter_ = [this](const QString& title, const QString& message) {
@@ -117,7 +117,7 @@ void MainWindow::createDocks() {
   location_list_->setSelectionMode(QAbstractItemView::SingleSelection);
   connect(location_list_, &QListWidget::currentRowChanged, this, [this](int row) {
     avatar_view_->setHighlightedLocation(row);
-    emit bodyLocationSelected(row);
+    Q_EMIT bodyLocationSelected(row);
   });
   add_dock(tr("Body locations"), "locations_dock", location_list_);
 
@@ -278,7 +278,7 @@ bool MainWindow::openPatternFile(const QString& path, bool remember) {
   status_bar_->setStatus({});
   if (remember) RecentFiles::add(path);
   updateTitle();
-  emit garmentOpened(garment_);
+  Q_EMIT garmentOpened(garment_);
   return true;
 }
 
@@ -303,7 +303,7 @@ bool MainWindow::openBodyFile(const QString& path, bool remember) {
   setBodyLocations(body_location_markers(body_->locations));
   if (remember) RecentFiles::add(path);
   updateTitle();
-  emit bodyOpened(body_);
+  Q_EMIT bodyOpened(body_);
   return true;
 }
 

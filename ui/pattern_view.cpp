@@ -270,7 +270,7 @@ void PatternView::mouseReleaseEvent(QMouseEvent* event) {
   }
   if (selection == selected_) return;
   setSelectedPieces(selection);
-  emit pieceSelectionChanged(selected_);
+  Q_EMIT pieceSelectionChanged(selected_);
 }
 
 }  // namespace garment::ui

@@ -1,7 +1,6 @@
-// TBB before any Qt header: its profiling header uses `emit` as a name, which Qt defines away.
-#include <tbb/task_arena.h>
-
 #include "ui/session_thread.h"
+
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <exception>
@@ -49,7 +48,7 @@ class SessionThread::Observer : public SessionObserver {
     update.stage_fraction = fraction_;
     update.pieces = snapshot.pieces;
     update.order = snapshot.order;
-    thread_.sendToGui([&thread = thread_, update] { emit thread.updated(update); });
+    thread_.sendToGui([&thread = thread_, update] { Q_EMIT thread.updated(update); });
   }
 
   bool cancel_requested() const override { return thread_.interrupt_.load(); }
@@ -92,7 +91,7 @@ void SessionThread::sendToGui(std::function<void()> emission) {
     const std::lock_guard lock(outbox_mutex_);
     outbox_.push_back(std::move(emission));
   }
-  emit outboxFilled(QPrivateSignal());
+  Q_EMIT outboxFilled(QPrivateSignal());
 }
 
 void SessionThread::emptyOutbox() {
@@ -302,7 +301,7 @@ void SessionThread::execute(const Command& command) {
     const QString title =
         command.kind == Command::Open ? tr("Cannot start the arrangement") : tr("Arrangement");
     const QString message = QString::fromUtf8(error.what());
-    sendToGui([this, title, message] { emit failed(title, message); });
+    sendToGui([this, title, message] { Q_EMIT failed(title, message); });
     if (!session_) return;
   }
   // Restores (also inside reset, reseed and reorder) drop the later checkpoints.
@@ -316,7 +315,7 @@ void SessionThread::execute(const Command& command) {
 void SessionThread::exportFile(ExportKind kind, const QString& path) {
   if (!session_) {
     const QString error = tr("nothing to export: no arrangement is open");
-    sendToGui([this, path, error] { emit exportFinished(path, error); });
+    sendToGui([this, path, error] { Q_EMIT exportFinished(path, error); });
     return;
   }
   try {
@@ -342,10 +341,10 @@ void SessionThread::exportFile(ExportKind kind, const QString& path) {
     }
   } catch (const std::exception& error) {
     const QString message = QString::fromUtf8(error.what());
-    sendToGui([this, path, message] { emit exportFinished(path, message); });
+    sendToGui([this, path, message] { Q_EMIT exportFinished(path, message); });
     return;
   }
-  sendToGui([this, path] { emit exportFinished(path, QString()); });
+  sendToGui([this, path] { Q_EMIT exportFinished(path, QString()); });
 }
 
 void SessionThread::publishUpdate() {
@@ -358,7 +357,7 @@ void SessionThread::publishUpdate() {
   update.elapsed_seconds = snapshot.elapsed_seconds;
   update.pieces = snapshot.pieces;
   update.order = snapshot.order;
-  sendToGui([this, update] { emit updated(update); });
+  sendToGui([this, update] { Q_EMIT updated(update); });
 }
 
 void SessionThread::publishState() {
@@ -379,7 +378,7 @@ void SessionThread::publishState() {
   state.seed = session_->options().seed ? *session_->options().seed : state.automatic_seed;
   state.history = history_;
   state.scene = scene_;
-  sendToGui([this, state] { emit stateChanged(state); });
+  sendToGui([this, state] { Q_EMIT stateChanged(state); });
 }
 
 }  // namespace garment::ui

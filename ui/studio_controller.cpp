@@ -110,7 +110,7 @@ StudioController::StudioController(MainWindow* window, SessionOptions options)
               window_->showError(tr("Cannot export"), error);
             else
               window_->statusBar()->showMessage(tr("wrote %1").arg(path), 5000);
-            emit exportDone(path, error);
+            Q_EMIT exportDone(path, error);
           });
 
   updateSeedChoice();
@@ -195,7 +195,7 @@ void StudioController::applyState(const SessionState& state) {
     status.phase = state.done ? tr("done") : tr("next: %1").arg(to_string(state.phase));
   window_->setArrangementStatus(status);
   updateActions();
-  emit stateApplied(state);
+  Q_EMIT stateApplied(state);
 }
 
 void StudioController::updateActions() {

@@ -13,7 +13,7 @@
 namespace garment {
 namespace {
 
-constexpr double kStep = 0.005;          // metres between the scanned sections
+constexpr double kScanStep = 0.005;      // metres between the scanned sections
 constexpr double kSpanMargin = 0.02;     // a torso loop reaches this far past the symmetry plane
 constexpr double kTorsoMinArea = 20e-4;  // m²: below this a spanning loop is a chin or a nose
 constexpr double kLimbMinArea = 5e-4;    // m²: fingers and ear lobes are smaller
@@ -94,7 +94,7 @@ BodyLandmarks find_body_landmarks(const BodyMesh& body, const BodySlicer& slicer
   const double centre = marks.centre_x;
 
   std::vector<Slice> slices;
-  for (double y = marks.floor + kStep; y < marks.top; y += kStep)
+  for (double y = marks.floor + kScanStep; y < marks.top; y += kScanStep)
     slices.push_back({y, slicer.section(y)});
   const auto torso_at = [&](const Slice& slice) { return torso_loop(slice.loops, centre); };
   const auto has_torso = [&](double y) { return torso_loop(slicer.section(y), centre) != nullptr; };
@@ -154,8 +154,9 @@ BodyLandmarks find_body_landmarks(const BodyMesh& body, const BodySlicer& slicer
       extreme(marks.crotch + 0.1 * span, low_armpit - 0.1 * span, false);
   if (!waist) fail("the waist");
   marks.waist = *waist;
-  const std::optional<double> hips = extreme(marks.crotch + kStep, marks.waist - kStep, true);
-  const std::optional<double> bust = extreme(marks.waist + kStep, low_armpit - 0.02, true);
+  const std::optional<double> hips =
+      extreme(marks.crotch + kScanStep, marks.waist - kScanStep, true);
+  const std::optional<double> bust = extreme(marks.waist + kScanStep, low_armpit - 0.02, true);
   if (!hips) fail("the hips");
   if (!bust) fail("the bust");
   marks.hips = *hips;
@@ -173,8 +174,8 @@ BodyLandmarks find_body_landmarks(const BodyMesh& body, const BodySlicer& slicer
   const double narrowest_perimeter = torso_perimeter(*narrowest);
   const auto wider = [&](double y) { return torso_perimeter(y) > 1.25 * narrowest_perimeter; };
   std::optional<double> neck;
-  for (double y = *narrowest; y > high_armpit && !neck; y -= kStep)
-    if (wider(y - kStep)) neck = refine(y - kStep, y, wider);
+  for (double y = *narrowest; y > high_armpit && !neck; y -= kScanStep)
+    if (wider(y - kScanStep)) neck = refine(y - kScanStep, y, wider);
   if (!neck) fail("the base of the neck");
   marks.neck = *neck;
 

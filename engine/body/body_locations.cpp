@@ -7,7 +7,7 @@
 namespace garment {
 namespace {
 
-constexpr double kStep = 0.005;  // metres between the sections a surface is fitted to
+constexpr double kSectionStep = 0.005;  // metres between the sections a surface is fitted to
 
 struct TorsoFrame {
   Eigen::Vector3d up, front, left;
@@ -22,7 +22,7 @@ struct Band {
 
 Band torso_band(const BodySlicer& slicer, double centre_x, double from, double to, double at) {
   Band band;
-  for (double y = from; y <= to + 1e-9; y += kStep) {
+  for (double y = from; y <= to + 1e-9; y += kSectionStep) {
     const std::vector<SectionLoop> loops = slicer.section(y);
     if (const SectionLoop* torso = torso_loop(loops, centre_x))
       for (const Eigen::Vector2d& p : torso->points)
