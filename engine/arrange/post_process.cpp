@@ -25,12 +25,11 @@ constexpr int kUntangleRegionRings = 8;
 // passes stop once no contact is left, or when the count has not improved for a while; a garment
 // still tangled then gets back its positions from before the passes, which moved crossing
 // vertices only and would leave it worse elsewhere (folds, open seams) for nothing.
-void untangle(ArrangementContext& context, const std::vector<bool>& arranged, Objective& objective,
-              SolverSettings settings, Eigen::MatrixX3d& positions, Observer* observer,
-              PostProcessReport& result) {
+void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vector<bool>& arranged,
+              Objective& objective, SolverSettings settings, Eigen::MatrixX3d& positions,
+              Observer* observer, PostProcessReport& result) {
   const Garment& garment = context.garment;
   const ArrangementParameters& parameters = context.parameters;
-  const MeshEdges mesh = build_mesh_edges(garment.triangles, garment.vertex_count());
   const Eigen::VectorXi welded = weld_seams_and_darts(garment);
   Eigen::VectorXi vertex_piece(garment.vertex_count());
   for (int v = 0; v < garment.vertex_count(); ++v)
@@ -153,6 +152,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   context.gravity->set_acceleration(energy.gravity * parameters.post_process_gravity_factor);
   context.stretch->set_strain_limit(parameters.post_process_strain_limit,
                                     parameters.post_process_strain_limit_factor);
+  const MeshEdges mesh = build_mesh_edges(garment.triangles, garment.vertex_count());
   Objective objective(active);
   objective.add(context.stretch)
       .add(context.bending)
@@ -161,7 +161,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
       .add(context.gravity);
   if (parameters.post_process_edge_repulsion_factor > 0.0)
     objective.add(std::make_shared<BodyEdgeRepulsionPotential>(
-        context.body, build_mesh_edges(garment.triangles, garment.vertex_count()).edges,
+        context.body, mesh.edges,
         energy.body_repulsion_stiffness * parameters.post_process_repulsion_factor *
             parameters.post_process_edge_repulsion_factor,
         parameters.post_process_body_buffer));
@@ -213,7 +213,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   result.final_energy = solved.final_energy;
 
   if (parameters.post_process_untangle_passes > 0 && solved.reason != StopReason::Cancelled)
-    untangle(context, arranged, objective, settings, positions, observer, result);
+    untangle(context, mesh, arranged, objective, settings, positions, observer, result);
 
   // The shared potentials go back to their arrangement strengths.
   context.sewing->set_stiffness(energy.sewing_stiffness);
