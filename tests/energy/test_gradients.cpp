@@ -26,6 +26,7 @@
 #include "engine/energy/objective.h"
 #include "engine/energy/self_repulsion_potential.h"
 #include "engine/energy/sewing_potential.h"
+#include "engine/energy/side_barrier_potential.h"
 #include "engine/energy/stretch_potential.h"
 #include "engine/energy/upward_potential.h"
 #include "support/test_paths.h"
@@ -299,6 +300,29 @@ class EnergyGradientsTest : public QObject {
     expect_exact("body edge repulsion",
                  check(std::make_shared<BodyEdgeRepulsionPotential>(sphere_, edges, 2.5e3, 0.004),
                        active_, state_));
+  }
+
+  void side_barrier() {
+    // A slanted plane through the pieces: every vertex is barred to the side its index picks,
+    // so about half of them are on the wrong side, or inside the buffer, and pushed.
+    std::vector<int> vertices;
+    std::vector<signed char> sides;
+    for (int v = 0; v < garment_.vertex_count(); ++v) {
+      vertices.push_back(v);
+      sides.push_back(v % 2 == 0 ? 1 : -1);
+    }
+    const Eigen::Vector3d normal = Eigen::Vector3d(1.0, 0.3, -0.2).normalized();
+    auto barrier =
+        std::make_shared<SideBarrierPotential>(vertices, sides, normal, 0.01, 5e3, 0.004);
+    expect_exact("side barrier", check(barrier, active_, state_));
+    // On its side and clear of the buffer, a vertex costs nothing.
+    const Eigen::MatrixX3d far = state_.rowwise() + 2.0 * normal.transpose();
+    auto all_positive = std::make_shared<SideBarrierPotential>(
+        vertices, std::vector<signed char>(vertices.size(), 1), normal, 0.01, 5e3, 0.004);
+    QCOMPARE(energy_of(all_positive, far), 0.0);
+    QVERIFY(energy_of(all_positive, state_) > 0.0);
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                             SideBarrierPotential({0}, {0}, normal, 0.0, 1.0, 0.0));
   }
 
   void self_repulsion() {
