@@ -4,13 +4,16 @@ namespace garment {
 
 ArrangementContext::ArrangementContext(const Garment& garment_in,
                                        std::shared_ptr<const DistanceGrid> body_in,
+                                       const BodyLandmarks& landmarks_in,
                                        const ArrangementParameters& parameters_in)
     : garment(garment_in),
       body(std::move(body_in)),
+      landmarks(landmarks_in),
       parameters(parameters_in),
       graph(garment_in),
       aligner(garment_in),
-      masses(vertex_masses(garment_in, parameters_in.energy.fabric_density)) {
+      masses(vertex_masses(garment_in, parameters_in.energy.fabric_density)),
+      mesh(build_mesh_edges(garment_in.triangles, garment_in.vertex_count())) {
   const EnergyParameters& energy = parameters.energy;
   stretch = std::make_shared<StretchPotential>(
       garment, energy.stretch_stiffness, energy.dart_stiffness, energy.stretch_compression_factor);

@@ -8,7 +8,9 @@
 #include "engine/arrange/alignment.h"
 #include "engine/arrange/arrangement_parameters.h"
 #include "engine/arrange/garment_graph.h"
+#include "engine/body/body_landmarks.h"
 #include "engine/body/distance_grid.h"
+#include "engine/core/mesh_topology.h"
 #include "engine/energy/bending_potential.h"
 #include "engine/energy/body_repulsion_potential.h"
 #include "engine/energy/gravity_potential.h"
@@ -20,14 +22,16 @@ namespace garment {
 
 struct ArrangementContext {
   ArrangementContext(const Garment& garment, std::shared_ptr<const DistanceGrid> body,
-                     const ArrangementParameters& parameters);
+                     const BodyLandmarks& landmarks, const ArrangementParameters& parameters);
 
   const Garment& garment;
   std::shared_ptr<const DistanceGrid> body;
+  BodyLandmarks landmarks;
   ArrangementParameters parameters;
   GarmentGraph graph;
   PieceAligner aligner;
   Eigen::VectorXd masses;  // #V kg
+  MeshEdges mesh;          // the garment's mesh edges (post-process)
 
   std::shared_ptr<StretchPotential> stretch;
   std::shared_ptr<BendingPotential> bending;  // interior edges and consistent seams

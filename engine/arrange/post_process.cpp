@@ -3,12 +3,14 @@
 #include <chrono>
 #include <numeric>
 
+#include "engine/arrange/leg_tubes.h"
 #include "engine/arrange/session.h"
 #include "engine/arrange/untangle.h"
 #include "engine/core/mesh_topology.h"
 #include "engine/energy/body_edge_repulsion_potential.h"
 #include "engine/energy/objective.h"
 #include "engine/energy/self_repulsion_potential.h"
+#include "engine/energy/side_barrier_potential.h"
 #include "engine/quality/exact_intersections.h"
 #include "engine/quality/garment_metrics.h"
 
@@ -152,7 +154,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   context.gravity->set_acceleration(energy.gravity * parameters.post_process_gravity_factor);
   context.stretch->set_strain_limit(parameters.post_process_strain_limit,
                                     parameters.post_process_strain_limit_factor);
-  const MeshEdges mesh = build_mesh_edges(garment.triangles, garment.vertex_count());
+  const MeshEdges& mesh = context.mesh;
   Objective objective(active);
   objective.add(context.stretch)
       .add(context.bending)
@@ -165,6 +167,18 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
         energy.body_repulsion_stiffness * parameters.post_process_repulsion_factor *
             parameters.post_process_edge_repulsion_factor,
         parameters.post_process_body_buffer));
+  // Each leg tube keeps to its side of the plane the buffer's distance, as from the body: the two
+  // meet with twice that between them.
+  if (parameters.post_process_leg_separation_factor > 0.0) {
+    LegTubes tubes = find_leg_tubes(garment, context.graph, arranged, positions, context.landmarks);
+    if (!tubes.vertices.empty())
+      objective.add(std::make_shared<SideBarrierPotential>(
+          std::move(tubes.vertices), std::move(tubes.sides), Eigen::Vector3d::UnitX(),
+          context.landmarks.centre_x,
+          energy.body_repulsion_stiffness * parameters.post_process_repulsion_factor *
+              parameters.post_process_leg_separation_factor,
+          parameters.post_process_body_buffer));
+  }
 
   // Layers in arrangement order: the seed, then each batch, outside everything before it. Vertices
   // on and next to a seam with an earlier layer are held by the seam instead (see

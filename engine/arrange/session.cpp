@@ -54,7 +54,8 @@ const char* to_string(Phase phase) {
 Session::Session(std::shared_ptr<const Scene> scene, SessionOptions options)
     : scene_(std::move(scene)), options_(std::move(options)), started_(now_seconds()) {
   const Garment& garment = *scene_->garment;
-  context_ = std::make_unique<ArrangementContext>(garment, scene_->sdf, options_.arrangement);
+  context_ = std::make_unique<ArrangementContext>(garment, scene_->sdf, scene_->body->landmarks,
+                                                  options_.arrangement);
   selector_ = std::make_unique<Selector>(garment, options_.arrangement.selection);
   termination_ = std::make_unique<TerminationCheck>(garment);
   automatic_seed_ = choose_seed(garment, scene_->classification);

@@ -66,6 +66,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_gravity_factor", p.post_process_gravity_factor);
   visit("post_process_body_buffer", p.post_process_body_buffer);
   visit("post_process_edge_repulsion_factor", p.post_process_edge_repulsion_factor);
+  visit("post_process_leg_separation_factor", p.post_process_leg_separation_factor);
   visit("post_process_strain_limit", p.post_process_strain_limit);
   visit("post_process_strain_limit_factor", p.post_process_strain_limit_factor);
   visit("post_process_untangle_passes", p.post_process_untangle_passes);

@@ -7,7 +7,9 @@
 // - the body buffer and the repulsion of edge midpoints (body_edge_repulsion_potential.h), on the
 //   same gc_0473: its snug waistband eases when it may lie closer to the body, and only the edge
 //   repulsion keeps edges from cutting into the body there;
-// - the untangling passes (untangle.h) on gc_0012, whose skirt panels cross at a side seam.
+// - the untangling passes (untangle.h) on gc_0012, whose skirt panels cross at a side seam;
+// - the leg separation (leg_tubes.h, side_barrier_potential.h) on gc_0147, wide trousers whose
+//   legs, arranged with the seed, overlap between the body's legs.
 
 #include <tbb/global_control.h>
 
@@ -103,6 +105,9 @@ class PostProcessTest : public QObject {
                    test::test_data("bodies/m_smpl_average_A40.obj"));
     ArrangementParameters parameters;
     parameters.post_process_untangle_passes = 0;
+    // The edge repulsion on the garment it was measured on: with the leg separation on, this band
+    // happens not to be cut into at 3 mm with vertices only (one edge of it was).
+    parameters.post_process_leg_separation_factor = 0.0;
     const Outcome close = run(scene, parameters);  // the defaults: 3 mm, edges held
     parameters.post_process_edge_repulsion_factor = 0.0;
     const Outcome vertices_only = run(scene, parameters);
@@ -164,6 +169,46 @@ class PostProcessTest : public QObject {
     // Pulled apart without tearing seams open or pushing cloth into the body.
     QVERIFY(after.max_seam_gap_m < 0.005);
     QCOMPARE(after.body_crossing_edges, 0);
+  }
+
+  void legSeparationKeepsWideTrouserLegsApart() {
+    if (test::sanitizer_build())
+      QSKIP("a sanitizer build: the barrier's kernel runs there in energy_gradients");
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    // gc_0147 on its body, f_smpl_average_A40: the four panels are the seed (pelvis front and
+    // back); the wide legs overlap across the plane of symmetry, where no body parts them.
+    const std::shared_ptr<const Scene> scene =
+        load_scene(test::test_data("patterns/gc_0147_specification.json"),
+                   test::test_data("bodies/f_smpl_average_A40.obj"));
+    ArrangementParameters parameters;
+    const Outcome separated = run(scene, parameters);
+    parameters.post_process_leg_separation_factor = 0.0;
+    const Outcome overlapping = run(scene, parameters);
+    QCOMPARE(separated.arranged, overlapping.arranged);
+
+    const BodyReference body(scene->body->mesh);
+    const std::vector<ExpectedRegion> regions = expected_regions_from_names(*scene->garment);
+    const GarmentMetrics before =
+        measure_garment(*scene->garment, overlapping.final_positions, &body, regions);
+    const GarmentMetrics after =
+        measure_garment(*scene->garment, separated.final_positions, &body, regions);
+    qInfo(
+        "cloth edges crossing cloth: %d without the barrier, %d with; seam gap %.1f mm, %.1f mm; "
+        "max strain %.3f, %.3f; body crossing edges %d, %d",
+        before.self_crossing_edges, after.self_crossing_edges, 1000.0 * before.max_seam_gap_m,
+        1000.0 * after.max_seam_gap_m, before.max_strain, after.max_strain,
+        before.body_crossing_edges, after.body_crossing_edges);
+    // Without it the right leg's panels (pant_*_r) cross the left leg's (pant_*_l), which the
+    // untangling passes do not part; with it the legs meet at the plane, nothing else spoilt.
+    QVERIFY(before.self_crossing_edges > 0);
+    const auto side = [&](int piece) { return scene->garment->pieces[piece].name.back(); };
+    for (const PiecePairCount& pair : before.self_crossing_pairs)
+      QVERIFY(side(pair.piece_a) != side(pair.piece_b));
+    QCOMPARE(after.self_crossing_edges, 0);
+    QVERIFY(after.max_seam_gap_m < 0.005);
+    QVERIFY(after.max_strain < 0.2);
+    QCOMPARE(after.body_crossing_edges, 0);
+    QCOMPARE(after.folds, 0);
   }
 };
 
