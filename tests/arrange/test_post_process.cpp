@@ -15,6 +15,8 @@
 
 #include <QtTest>
 
+#include <utility>
+
 #include "engine/arrange/session.h"
 #include "engine/core/mesh_topology.h"
 #include "engine/quality/garment_metrics.h"
@@ -53,6 +55,16 @@ Outcome run(const std::shared_ptr<const Scene>& scene, const ArrangementParamete
   }
   outcome.final_positions = session.positions();
   return outcome;
+}
+
+// The final garments of two outcomes, measured on the scene's body.
+std::pair<GarmentMetrics, GarmentMetrics> measure_post_processed(const Scene& scene,
+                                                                 const Outcome& first,
+                                                                 const Outcome& second) {
+  const BodyReference body(scene.body->mesh);
+  const std::vector<ExpectedRegion> regions = expected_regions_from_names(*scene.garment);
+  return {measure_garment(*scene.garment, first.final_positions, &body, regions),
+          measure_garment(*scene.garment, second.final_positions, &body, regions)};
 }
 
 }  // namespace
@@ -152,13 +164,7 @@ class PostProcessTest : public QObject {
     parameters.post_process_untangle_passes = 0;
     const Outcome settled = run(scene, parameters);
     QCOMPARE(untangled.arranged, settled.arranged);
-
-    const BodyReference body(scene->body->mesh);
-    const std::vector<ExpectedRegion> regions = expected_regions_from_names(*scene->garment);
-    const GarmentMetrics before =
-        measure_garment(*scene->garment, settled.final_positions, &body, regions);
-    const GarmentMetrics after =
-        measure_garment(*scene->garment, untangled.final_positions, &body, regions);
+    const auto [before, after] = measure_post_processed(*scene, settled, untangled);
     qInfo(
         "cloth edges crossing cloth: %d after the settle, %d untangled; seam gap %.1f mm, %.1f "
         "mm; body crossing edges %d, %d",
@@ -185,13 +191,7 @@ class PostProcessTest : public QObject {
     parameters.post_process_leg_separation_factor = 0.0;
     const Outcome overlapping = run(scene, parameters);
     QCOMPARE(separated.arranged, overlapping.arranged);
-
-    const BodyReference body(scene->body->mesh);
-    const std::vector<ExpectedRegion> regions = expected_regions_from_names(*scene->garment);
-    const GarmentMetrics before =
-        measure_garment(*scene->garment, overlapping.final_positions, &body, regions);
-    const GarmentMetrics after =
-        measure_garment(*scene->garment, separated.final_positions, &body, regions);
+    const auto [before, after] = measure_post_processed(*scene, overlapping, separated);
     qInfo(
         "cloth edges crossing cloth: %d without the barrier, %d with; seam gap %.1f mm, %.1f mm; "
         "max strain %.3f, %.3f; body crossing edges %d, %d",
