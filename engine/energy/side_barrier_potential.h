@@ -29,7 +29,6 @@ class SideBarrierPotential : public Potential {
   const char* name() const override { return "side barrier"; }
   int element_count() const override { return static_cast<int>(active_.size()); }
   double accumulate(const Positions& x, int begin, int end, const Accumulator& out) const override;
-  DiagonalKind diagonal_kind() const override { return DiagonalKind::Current; }
   void mark_touched_vertices(std::vector<char>& touched) const override;
   std::size_t element_bytes() const override { return active_.size() * sizeof(Element); }
 
