@@ -1,0 +1,245 @@
+// drape_from_seam (engine/arrange/seam_drape.h) on the circle skirt of gc_0068: its back panel is
+// a half annulus sewn along the inner arc to the two back bodice halves. With the bodice's seam
+// laid where the rigid fit lays the panel flat and horizontal (the disc of the flying-skirt
+// failure), the panel is hung instead:
+//   - its seam vertices stay on their partners (within the 5 mm seam-gap verdict);
+//   - nothing rises above the seam, and each vertex lies as far below it as cos θ times its
+//     distance from the seam in the pattern (measured here from the outline, not the engine's
+//     segments);
+//   - no triangle turns over (each normal agrees with the outside directions written for its
+//     corners) and no edge is stretched past 20 %: the hanging cone only compresses the hem;
+// and it is left alone when the rigid fit already hangs it, when it would go up from its seam (a
+// bodice half on the skirt), when hung it would face the body (the disc's outside down), or when
+// the option is off.
+
+#include <QtTest>
+
+#include <cmath>
+
+#include "engine/arrange/seam_drape.h"
+#include "engine/pattern/garment_mesh.h"
+#include "engine/pattern/pattern.h"
+#include "support/test_paths.h"
+
+using namespace garment;
+
+namespace {
+
+constexpr double kSeamHeight = 1.1;  // metres
+
+Garment circle_skirt_dress() {
+  return build_garment(load_pattern(test::test_data("patterns/hanging_skirt/gc_0068_specification.json")));
+}
+
+int piece_named(const Garment& garment, const std::string& name) {
+  for (std::size_t p = 0; p < garment.pieces.size(); ++p)
+    if (garment.pieces[p].name == name) return static_cast<int>(p);
+  return -1;
+}
+
+// `rotation`, then up to the seam height.
+RigidTransform at_seam_height(const Eigen::Matrix3d& rotation) {
+  RigidTransform transform;
+  transform.rotation = rotation;
+  transform.translation = Eigen::Vector3d(0.0, kSeamHeight, 0.0);
+  return transform;
+}
+
+// The flying disc: a back panel seen from outside (from behind the body) has the pattern's x on
+// the body's right (−x); its up goes to the body's front (+z), so the panel, which hangs down in
+// the pattern, sticks out behind the body, flat, its outside up.
+Eigen::Matrix3d flat_behind() {
+  Eigen::Matrix3d rotation;
+  rotation.col(0) = -Eigen::Vector3d::UnitX();
+  rotation.col(1) = Eigen::Vector3d::UnitZ();
+  rotation.col(2) = rotation.col(0).cross(rotation.col(1));
+  return rotation;
+}
+
+// The same disc turned inside out: outside down, so that hung it would face the body.
+Eigen::Matrix3d flat_behind_inside_out() {
+  Eigen::Matrix3d rotation;
+  rotation.col(0) = Eigen::Vector3d::UnitX();
+  rotation.col(1) = Eigen::Vector3d::UnitZ();
+  rotation.col(2) = rotation.col(0).cross(rotation.col(1));
+  return rotation;
+}
+
+// The pieces `partner_pieces` are placed: each of their vertices sewn to `piece` goes where
+// `transform` takes its partner's rest position, so that the rigid fit of `piece` is `transform`
+// exactly.
+std::vector<bool> partners_at(const Garment& garment, int piece,
+                              const std::vector<std::string>& partner_pieces,
+                              const RigidTransform& transform, Eigen::MatrixX3d& positions) {
+  std::vector<bool> placed(garment.pieces.size(), false);
+  for (const std::string& name : partner_pieces)
+    placed[piece_named(garment, name)] = true;
+  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k)
+    for (int side = 0; side < 2; ++side) {
+      const int own = garment.sewing_pairs(k, side), partner = garment.sewing_pairs(k, 1 - side);
+      if (garment.vertex_piece(own) != piece || !placed[garment.vertex_piece(partner)]) continue;
+      const Eigen::Vector3d rest(garment.rest_positions(own, 0), garment.rest_positions(own, 1),
+                                 0.0);
+      positions.row(partner) = (transform.rotation * rest + transform.translation).transpose();
+    }
+  return placed;
+}
+
+// Distance in the pattern from each vertex of `piece` to the polyline of its outline vertices
+// sewn to placed pieces.
+std::vector<double> distance_to_seam(const Garment& garment, int piece,
+                                     const std::vector<bool>& placed) {
+  const Piece& info = garment.pieces[piece];
+  std::vector<char> sewn(garment.vertex_count(), 0);
+  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k)
+    for (int side = 0; side < 2; ++side)
+      if (placed[garment.vertex_piece(garment.sewing_pairs(k, 1 - side))])
+        sewn[garment.sewing_pairs(k, side)] = 1;
+  std::vector<double> distances;
+  for (int v = info.first_vertex; v < info.first_vertex + info.vertex_count; ++v) {
+    const Eigen::Vector2d p = garment.rest_positions.row(v);
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < info.outline.size(); ++k) {
+      const int a = info.outline[k], b = info.outline[(k + 1) % info.outline.size()];
+      if (!sewn[a] || !sewn[b]) continue;
+      const Eigen::Vector2d start = garment.rest_positions.row(a);
+      const Eigen::Vector2d step = Eigen::Vector2d(garment.rest_positions.row(b)) - start;
+      const double t = std::clamp((p - start).dot(step) / step.squaredNorm(), 0.0, 1.0);
+      best = std::min(best, (p - start - t * step).norm());
+    }
+    distances.push_back(best);
+  }
+  return distances;
+}
+
+}  // namespace
+
+class SeamDrapeTest : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void flatCircleSkirtPanelHangsFromItsSeam_data() {
+    QTest::addColumn<double>("flare");
+    for (double flare : {SeamDrapeSettings{}.flare_angle, 0.3, 0.8})
+      QTest::addRow("flare %.1f rad", flare) << flare;
+  }
+  void flatCircleSkirtPanelHangsFromItsSeam() {
+    QFETCH(double, flare);
+    const Garment garment = circle_skirt_dress();
+    const int skirt = piece_named(garment, "skirt_back");
+    QVERIFY(skirt >= 0);
+    const Piece& info = garment.pieces[skirt];
+    Eigen::MatrixX3d positions = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
+    const RigidTransform transform = at_seam_height(flat_behind());
+    // The back bodice is arranged; the skirt front, sewn to the sides, is in the same batch.
+    const std::vector<bool> placed =
+        partners_at(garment, skirt, {"left_btorso", "right_btorso"}, transform, positions);
+    const Eigen::MatrixX3d partners = positions;
+
+    SeamDrapeSettings settings;
+    settings.flare_angle = flare;
+    Eigen::MatrixX3d outsides = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
+    QVERIFY(drape_from_seam(garment, skirt, placed, transform, settings, positions, outsides));
+
+    double worst_gap = 0.0;
+    for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k)
+      for (int side = 0; side < 2; ++side) {
+        const int own = garment.sewing_pairs(k, side), partner = garment.sewing_pairs(k, 1 - side);
+        if (garment.vertex_piece(own) == skirt && placed[garment.vertex_piece(partner)])
+          worst_gap = std::max(worst_gap, (positions.row(own) - partners.row(partner)).norm());
+      }
+    QVERIFY2(worst_gap < 0.005, qPrintable(QString("seam gap %1 m").arg(worst_gap)));
+
+    const std::vector<double> distances = distance_to_seam(garment, skirt, placed);
+    const double cos_flare = std::cos(settings.flare_angle);
+    double highest = -1.0, worst_depth_error = 0.0, deepest = 0.0;
+    for (int i = 0; i < info.vertex_count; ++i) {
+      const double drop = kSeamHeight - positions(info.first_vertex + i, 1);
+      highest = std::max(highest, -drop);
+      deepest = std::max(deepest, drop);
+      worst_depth_error = std::max(
+          worst_depth_error, std::abs(drop - cos_flare * distances[i]) / (0.01 + distances[i]));
+    }
+    QVERIFY2(highest < 0.001, qPrintable(QString("%1 m above the seam").arg(highest)));
+    QVERIFY2(deepest > 0.5 * cos_flare * 0.5, qPrintable(QString("hangs %1 m").arg(deepest)));
+    QVERIFY2(worst_depth_error < 0.1,
+             qPrintable(QString("depth off by %1").arg(worst_depth_error)));
+
+    int turned = 0;
+    double worst_stretch = 0.0;
+    for (int t = 0; t < garment.triangle_count(); ++t) {
+      if (garment.triangle_piece(t) != skirt) continue;
+      const Eigen::Vector3i corners = garment.triangles.row(t);
+      const Eigen::Vector3d a = positions.row(corners[0]), b = positions.row(corners[1]),
+                            c = positions.row(corners[2]);
+      const Eigen::Vector3d outside =
+          outsides.row(corners[0]) + outsides.row(corners[1]) + outsides.row(corners[2]);
+      turned += (b - a).cross(c - a).dot(outside) <= 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const int from = corners[k], to = corners[(k + 1) % 3];
+        const double rest =
+            (garment.rest_positions.row(from) - garment.rest_positions.row(to)).norm();
+        const double st = (positions.row(from) - positions.row(to)).norm() / rest - 1.0;
+        if (st > 0.2)
+          qDebug() << st << garment.rest_positions(from, 0) << garment.rest_positions(from, 1)
+                   << distances[from - info.first_vertex] << positions(from, 0)
+                   << positions(from, 1) << positions(from, 2) << positions(to, 0)
+                   << positions(to, 1) << positions(to, 2);
+        worst_stretch = std::max(worst_stretch, st);
+      }
+    }
+    qDebug("seam gap %.2f mm, depth error %.3f, stretch %.3f", 1000 * worst_gap, worst_depth_error,
+           worst_stretch);
+    QCOMPARE(turned, 0);
+    QVERIFY2(worst_stretch < 0.2, qPrintable(QString("stretch %1").arg(worst_stretch)));
+  }
+
+  void rigidFitsThatHangOrRiseAreKept() {
+    const Garment garment = circle_skirt_dress();
+    const int skirt = piece_named(garment, "skirt_back");
+    const int bodice = piece_named(garment, "left_btorso");
+    QVERIFY(skirt >= 0 && bodice >= 0);
+    struct Case {
+      const char* what;
+      int piece;
+      std::vector<std::string> partners;
+      Eigen::Matrix3d rotation;
+      double sideways_below;
+    };
+    const Case cases[] = {
+        {"hanging already",
+         skirt,
+         {"left_btorso", "right_btorso"},
+         Eigen::Matrix3d::Identity(),
+         SeamDrapeSettings{}.sideways_below},
+        {"a bodice half, up from its seam",
+         bodice,
+         {"skirt_back"},
+         flat_behind(),
+         SeamDrapeSettings{}.sideways_below},
+        {"inside out once hung",
+         skirt,
+         {"left_btorso", "right_btorso"},
+         flat_behind_inside_out(),
+         SeamDrapeSettings{}.sideways_below},
+        {"option off", skirt, {"left_btorso", "right_btorso"}, flat_behind(), -1.0},
+    };
+    for (const Case& test : cases) {
+      Eigen::MatrixX3d positions = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
+      const RigidTransform transform = at_seam_height(test.rotation);
+      const std::vector<bool> placed =
+          partners_at(garment, test.piece, test.partners, transform, positions);
+      const Eigen::MatrixX3d before = positions;
+      Eigen::MatrixX3d outsides = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
+      SeamDrapeSettings settings;
+      settings.sideways_below = test.sideways_below;
+      QVERIFY2(
+          !drape_from_seam(garment, test.piece, placed, transform, settings, positions, outsides),
+          test.what);
+      QVERIFY2(positions == before && outsides.isZero(), test.what);
+    }
+  }
+};
+
+QTEST_APPLESS_MAIN(SeamDrapeTest)
+#include "test_seam_drape.moc"
