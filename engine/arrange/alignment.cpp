@@ -121,15 +121,15 @@ void PieceAligner::place(int piece, const RigidTransform& transform,
   }
 }
 
-void PieceAligner::lift_out_of_body(int piece, const RigidTransform& transform,
+void PieceAligner::lift_out_of_body(int piece, const Eigen::MatrixX3d& outsides,
                                     const DistanceGrid& body, double clearance,
                                     Eigen::MatrixX3d& positions) const {
   constexpr double kStep = 0.005, kReach = 1.0;  // metres
-  const Eigen::Vector3d outside = transform.rotation.col(2);
   const Piece& info = garment_.pieces[piece];
   for (int v = info.first_vertex; v < info.first_vertex + info.vertex_count; ++v) {
     const Eigen::Vector3d start = positions.row(v).transpose();
     if (body.value(start) >= clearance) continue;
+    const Eigen::Vector3d outside = outsides.row(v).transpose();
     for (double travel = kStep; travel <= kReach; travel += kStep) {
       const Eigen::Vector3d candidate = start + travel * outside;
       if (body.value(candidate) >= clearance) {

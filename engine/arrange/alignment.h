@@ -41,11 +41,11 @@ class PieceAligner {
 
   // A flat piece sewn on two sides of the body (a skirt front between the side seams, a sleeve
   // half around the arm) is placed through it. Lifts every vertex of `piece` that is inside the
-  // body, or nearer than `clearance`, along the piece's outside direction (rotation · +z, which
-  // the continuation points made agree with its partners' outside) until it is `clearance` away:
-  // the piece then drapes over the body instead of crossing it. Vertices that find no way out
-  // within a metre stay where they are.
-  void lift_out_of_body(int piece, const RigidTransform& transform, const DistanceGrid& body,
+  // body, or nearer than `clearance`, along its outside direction (its row of `outsides`, #V×3:
+  // for a placed rest shape rotation · +z, which the continuation points made agree with its
+  // partners' outside) until it is `clearance` away: the piece then drapes over the body instead
+  // of crossing it. Vertices that find no way out within a metre stay where they are.
+  void lift_out_of_body(int piece, const Eigen::MatrixX3d& outsides, const DistanceGrid& body,
                         double clearance, Eigen::MatrixX3d& positions) const;
 
  private:

@@ -63,6 +63,8 @@ void BatchArrangement::update_rings() {
 }
 
 void BatchArrangement::place_new_pieces(Eigen::MatrixX3d& positions) {
+  const Garment& garment = context_->garment;
+  Eigen::MatrixX3d outsides(garment.vertex_count(), 3);
   for (int piece : pieces_) {
     if (placed_[piece]) continue;
     // Aligned to the arranged pieces, which have their shape; batch pieces placed before it are
@@ -70,7 +72,12 @@ void BatchArrangement::place_new_pieces(Eigen::MatrixX3d& positions) {
     RigidTransform transform = context_->aligner.fit(piece, arranged_, positions);
     if (transform.sewing_pairs < 2) transform = context_->aligner.fit(piece, placed_, positions);
     context_->aligner.place(piece, transform, positions);
-    context_->aligner.lift_out_of_body(piece, transform, *context_->body,
+    const Piece& info = garment.pieces[piece];
+    outsides.middleRows(info.first_vertex, info.vertex_count).rowwise() =
+        transform.rotation.col(2).transpose();
+    drape_from_seam(garment, piece, arranged_, transform, context_->parameters.seam_drape,
+                    positions, outsides);
+    context_->aligner.lift_out_of_body(piece, outsides, *context_->body,
                                        context_->parameters.energy.body_distance, positions);
     placed_[piece] = true;
   }

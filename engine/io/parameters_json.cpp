@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <numbers>
 
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
@@ -45,6 +46,11 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("refine_rings", p.refine_rings);
   visit("align.first", p.align.first);
   visit("align.revisit", p.align.revisit);
+  visit("seam_drape.hanging_above", p.seam_drape.hanging_above);
+  visit("seam_drape.seam_extent", p.seam_drape.seam_extent);
+  visit("seam_drape.sideways_below", p.seam_drape.sideways_below);
+  visit("seam_drape.flat_seam_ratio", p.seam_drape.flat_seam_ratio);
+  visit("seam_drape.flare_angle", p.seam_drape.flare_angle);
   visit("rings_per_round", p.rings_per_round);
   visit("body_round.first", p.body_round.first);
   visit("body_round.revisit", p.body_round.revisit);
@@ -122,6 +128,13 @@ void apply_parameters_json(const std::string& json_text, const std::string& sour
   for (const std::string& key : present)
     if (std::find(known.begin(), known.end(), key) == known.end())
       throw_input_error(source, key, "unknown parameter");
+  const SeamDrapeSettings& drape = parameters.seam_drape;
+  if (!(drape.flare_angle >= 0.0 && drape.flare_angle <= 0.5 * std::numbers::pi))
+    throw_input_error(source, "seam_drape.flare_angle", "must be between 0 and π/2 (radians)");
+  if (!(drape.seam_extent > 0.0 && drape.seam_extent <= 1.0))
+    throw_input_error(source, "seam_drape.seam_extent", "must be more than 0 and at most 1");
+  if (!(drape.flat_seam_ratio > 0.0))
+    throw_input_error(source, "seam_drape.flat_seam_ratio", "must be more than 0");
   if (!(parameters.post_process_body_buffer > 0.0))
     throw_input_error(source, "post_process_body_buffer", "must be more than 0");
   if (!(parameters.post_process_edge_repulsion_factor >= 0.0))

@@ -65,6 +65,16 @@ class ParametersJsonTest : public QObject {
     QVERIFY(error_of(R"({"post_process_strain_limit_factor": 1})").isEmpty());
   }
 
+  void outOfRangeSeamDrapeNamesTheKey() {
+    for (const char* json :
+         {R"({"seam_drape": {"flare_angle": 2}})", R"({"seam_drape": {"seam_extent": 0}})",
+          R"({"seam_drape": {"flat_seam_ratio": -1}})"}) {
+      const QString message = error_of(json);
+      QVERIFY2(message.contains("p.json") && message.contains("seam_drape."), qPrintable(message));
+    }
+    QVERIFY(error_of(R"({"seam_drape": {"sideways_below": -1, "flare_angle": 0}})").isEmpty());
+  }
+
   void outOfRangeBodyBufferNamesTheKey() {
     const QString buffer = error_of(R"({"post_process_body_buffer": 0})");
     QVERIFY2(buffer.contains("post_process_body_buffer"), qPrintable(buffer));
