@@ -119,8 +119,28 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
     return false;
 
   const Eigen::Vector3d world_down(0.0, -1.0, 0.0);
-  const double cos_flare = std::cos(settings.flare_angle);
-  const double sin_flare = std::sin(settings.flare_angle);
+  // The flare of the cone whose development keeps lengths along the seam: a cone of half-angle θ
+  // unrolls into a sector that turns sin θ times as much as its base circle, so a straight seam
+  // round the body hangs straight down (a pencil or tiered skirt) and a circle skirt's arc would
+  // lie flat (capped at the flare angle).
+  double turn_in_pattern = 0.0, turn_round_body = 0.0;
+  for (const SeamSegment& segment : segments) {
+    if (segment.next < 0) continue;
+    const SeamSegment& next = segments[segment.next];
+    turn_in_pattern +=
+        std::atan2(segment.tangent.x() * next.tangent.y() - segment.tangent.y() * next.tangent.x(),
+                   segment.tangent.dot(next.tangent));
+    const Eigen::Vector2d from(segment.along.x(), segment.along.z());
+    const Eigen::Vector2d to(next.along.x(), next.along.z());
+    if (from.norm() > 1e-9 && to.norm() > 1e-9)
+      turn_round_body += std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
+  }
+  const double flare = std::abs(turn_in_pattern) < std::abs(turn_round_body)
+                           ? std::min(settings.flare_angle, std::asin(std::abs(turn_in_pattern) /
+                                                                      std::abs(turn_round_body)))
+                           : settings.flare_angle;
+  const double cos_flare = std::cos(flare);
+  const double sin_flare = std::sin(flare);
   for (SeamSegment& segment : segments) {
     const Eigen::Vector3d away = rotated(segment.inward);
     Eigen::Vector3d vertical = world_down - world_down.dot(segment.along) * segment.along;

@@ -10,10 +10,12 @@
 //     the next's as the offset turns between their normals;
 //   - beyond an end of the seam: the offset along the seam continues along its 3D tangent T.
 // D = cos θ·vertical + sin θ·out, with vertical = straight down made perpendicular to T and
-// out = T × vertical, the piece's outside (T × D is the hanging surface's normal). Distances from
-// the seam are kept and lengths along it only shrink: the hem starts compressed, which the stretch
-// model lets buckle (energy_parameters.h, stretch_compression_factor), instead of stretched flat
-// through the arms.
+// out = T × vertical, the piece's outside (T × D is the hanging surface's normal). θ is the flare
+// of the cone whose development keeps lengths along the seam: sin θ = how much the seam turns in
+// the pattern over how much it turns round the body (0 for a straight waist, which hangs straight
+// down), at most `flare_angle`. Distances from the seam are kept and lengths along it only shrink:
+// the hem starts compressed, which the stretch model lets buckle (energy_parameters.h,
+// stretch_compression_factor), instead of stretched flat through the arms.
 
 #include <Eigen/Core>
 #include <vector>
@@ -36,8 +38,9 @@ struct SeamDrapeSettings {
   // ... and the seam runs round the body, not up it: its 3D height range under this fraction of
   // its horizontal size (a waist, not an armhole of an arm held out).
   double flat_seam_ratio = 0.5;
-  // θ, radians outwards from the vertical. Measured on the 74 circle skirts of the 500 GarmentCode
-  // patterns (23 clean with the rigid fit alone): 1.0 → 24, 1.2 → 26, 1.4 → 25 clean.
+  // The largest θ, radians outwards from the vertical (a full circle skirt's cone would be flat).
+  // Measured on the 74 circle skirts of the 500 GarmentCode patterns (23 clean with the rigid fit
+  // alone): 1.0 → 24, 1.2 → 26, 1.4 → 25 clean.
   double flare_angle = 1.2;
 };
 
