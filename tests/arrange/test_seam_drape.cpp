@@ -117,6 +117,17 @@ std::vector<double> distance_to_seam(const Garment& garment, int piece,
   return distances;
 }
 
+// gc_0068's back skirt panel with the back bodice arranged where the rigid fit lays the panel flat
+// behind the body; the skirt front, sewn to its sides, is in the same batch.
+struct FlatDisc {
+  Garment garment = circle_skirt_dress();
+  int skirt = piece_named(garment, "skirt_back");
+  RigidTransform transform = at_seam_height(flat_behind());
+  Eigen::MatrixX3d positions = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
+  std::vector<bool> placed =
+      partners_at(garment, skirt, {"left_btorso", "right_btorso"}, transform, positions);
+};
+
 // Runs drape_from_seam on `piece` with the placed partners in `positions` and checks the hanging
 // start against `flare` (θ); returns what failed, or nothing.
 QString check_hanging(const Garment& garment, int piece, const std::vector<bool>& placed,
@@ -189,21 +200,14 @@ class SeamDrapeTest : public QObject {
   }
   void flatCircleSkirtPanelHangsFromItsSeam() {
     QFETCH(double, flare);
-    const Garment garment = circle_skirt_dress();
-    const int skirt = piece_named(garment, "skirt_back");
-    QVERIFY(skirt >= 0);
-    Eigen::MatrixX3d positions = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
-    const RigidTransform transform = at_seam_height(flat_behind());
-    // The back bodice is arranged; the skirt front, sewn to the sides, is in the same batch.
-    const std::vector<bool> placed =
-        partners_at(garment, skirt, {"left_btorso", "right_btorso"}, transform, positions);
-
+    const FlatDisc disc;
+    QVERIFY(disc.skirt >= 0);
     SeamDrapeSettings settings;
     settings.flare_angle = flare;
     // The seam turns round the body as much as in the pattern: the cone that keeps lengths along
     // it would be flat, and the flare angle caps it.
-    const QString failure =
-        check_hanging(garment, skirt, placed, transform, settings, positions, flare);
+    const QString failure = check_hanging(disc.garment, disc.skirt, disc.placed, disc.transform,
+                                          settings, disc.positions, flare);
     QVERIFY2(failure.isEmpty(), qPrintable(failure));
   }
 
@@ -211,13 +215,13 @@ class SeamDrapeTest : public QObject {
   // same length: the cone whose development keeps that length has sin θ = 1 / 1.5 (41.8°), under
   // the default cap.
   void seamTurningMoreRoundTheBodyFlaresLess() {
-    const Garment garment = circle_skirt_dress();
-    const int skirt = piece_named(garment, "skirt_back");
-    QVERIFY(skirt >= 0);
-    Eigen::MatrixX3d positions = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
-    const RigidTransform transform = at_seam_height(flat_behind());
-    const std::vector<bool> placed =
-        partners_at(garment, skirt, {"left_btorso", "right_btorso"}, transform, positions);
+    FlatDisc disc;
+    QVERIFY(disc.skirt >= 0);
+    const Garment& garment = disc.garment;
+    const int skirt = disc.skirt;
+    const std::vector<bool>& placed = disc.placed;
+    const RigidTransform& transform = disc.transform;
+    Eigen::MatrixX3d& positions = disc.positions;
 
     // The arc's centre from three of its points (the panel's waist is one circle).
     std::vector<std::pair<int, int>> seam;  // (own, partner)
