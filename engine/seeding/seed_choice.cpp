@@ -85,6 +85,39 @@ void complete_front_and_back(const PieceClassification& classification, GroupCla
   }
 }
 
+// When the classifier finds one side only (a dress's front chest, its back called a neck piece),
+// the other side is the group sewn to it that the classifier ranks highest for the missing class: a
+// one-sided seed leaves the other side to the rigid fit of §7.1, which lays it flat beside its
+// partner, outside it, instead of round the body (paper §8.3.1: both chest pieces as seeds). The
+// classifier must give that group at least kNeighbourSideProbability: a waistband or a hem flap it
+// never takes for a side stays out. (On the templates the sides it completes get 0.15 to 0.37.)
+constexpr double kNeighbourSideProbability = 0.1;
+
+void complete_from_neighbours(const Garment& garment, const PieceClassification& classification,
+                              GroupClasses& classes, SeedClass front, SeedClass back) {
+  for (const auto& [present, missing] : {std::pair{front, back}, std::pair{back, front}}) {
+    const std::vector<int> groups = groups_of_class(classification, classes, present);
+    if (groups.empty() || !groups_of_class(classification, classes, missing).empty()) continue;
+    const std::vector<int> part =
+        connected_groups_of_class(garment, classification, classes, groups.front(), present);
+    int best = -1;
+    for (const StitchPairs& range : garment.stitches) {
+      const Stitch& stitch = garment.pattern.stitches[range.stitch];
+      const int a = classification.piece_group[stitch.a.panel],
+                b = classification.piece_group[stitch.b.panel];
+      for (const auto& [inside, other] : {std::pair{a, b}, std::pair{b, a}}) {
+        if (std::find(part.begin(), part.end(), inside) == part.end() || classes[other] == present)
+          continue;
+        if (best < 0 ||
+            classification.probability(other, missing) > classification.probability(best, missing))
+          best = other;
+      }
+    }
+    if (best >= 0 && classification.probability(best, missing) >= kNeighbourSideProbability)
+      classes[best] = missing;
+  }
+}
+
 }  // namespace
 
 std::vector<int> SeedPlan::pieces() const {
@@ -132,6 +165,8 @@ SeedPlan choose_seed(const Garment& garment, const PieceClassification& classifi
                                                            {"pelvis_front", "pelvis_back"}};
   for (int tier = 0; tier < 2; ++tier) {
     complete_front_and_back(classification, classes, pairs[tier].first, pairs[tier].second);
+    complete_from_neighbours(garment, classification, classes, pairs[tier].first,
+                             pairs[tier].second);
     for (const auto& [wanted, location] : {std::pair{pairs[tier].first, locations[tier].first},
                                            std::pair{pairs[tier].second, locations[tier].second}}) {
       const std::vector<int> groups = groups_of_class(classification, classes, wanted);

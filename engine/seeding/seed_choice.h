@@ -3,9 +3,10 @@
 // the neck or waist piece (with the pieces of its kind sewn to it: a collar in four parts, a
 // waistband in two) when some of these close into a ring round the body, else the chest pieces
 // (front and back), else the pelvis pieces (front and back, for skirts and trousers without a
-// waistband), else a rule: the piece with the most garment hanging below its seams (Eq. 1), as the
-// neck or waist seed would have. Manual (§5.1.2): any set of pieces and one of the 15 body
-// locations.
+// waistband; when the classifier finds one side only, the other is the piece sewn to it that it
+// ranks highest for that side), else a rule: the piece with the most garment hanging below its
+// seams (Eq. 1), as the neck or waist seed would have. Manual (§5.1.2): any set of pieces and one
+// of the 15 body locations.
 
 #include <string>
 #include <vector>

@@ -1,9 +1,10 @@
 // The seed choice (engine/seeding/seed_choice.h, paper §5) on a hand-made garment of four panels
 // with given class probabilities: the neck or waist piece wins over chest and pelvis pieces when
-// it closes into a ring (else it is passed over), front
-// and back pieces go to their two locations, a pair of identical panels that the classifier puts
-// on one side is split into front and back (only when it gives the other side a real chance), and
-// without any seed class the rule picks the piece with the most garment below its seams.
+// it closes into a ring (else it is passed over), front and back pieces go to their two
+// locations, a pair of identical panels that the classifier puts on one side is split into front
+// and back (only when it gives the other side a real chance), a side found alone takes the piece
+// sewn to it that is most probably the other side, and without any seed class the rule picks the
+// piece with the most garment below its seams.
 
 #include <QtTest>
 
@@ -155,6 +156,27 @@ class SeedChoiceTest : public QObject {
                                                    {},
                                                    {}}));
     QCOMPARE(parts_of(plan), (Parts{{"pelvis_back", {0, 1}}}));
+  }
+
+  // The classifier finds a front chest only; the back, sewn to it, is its second guess for piece 1.
+  // Seeded alone, the front leaves the back to be laid flat beside it, outside it.
+  void oneSidedChestTakesItsSewnPartner() {
+    const SeedPlan plan = choose_seed(
+        four_panels(), classification({{{SeedClass::FrontChest, 0.8}},
+                                       {{kFrontPelvis, 0.5}, {SeedClass::BackChest, 0.15}},
+                                       {{SeedClass::BackChest, 0.05}},
+                                       {}}));
+    QCOMPARE(parts_of(plan), (Parts{{"chest_front", {0}}, {"chest_back", {1}}}));
+  }
+
+  // A partner the classifier gives no real chance of being the other side stays out.
+  void oneSidedChestWithoutAPlausiblePartnerStaysAlone() {
+    const SeedPlan plan = choose_seed(
+        four_panels(), classification({{{SeedClass::FrontChest, 0.8}},
+                                       {{kFrontPelvis, 0.5}, {SeedClass::BackChest, 0.05}},
+                                       {{SeedClass::BackChest, 0.05}},
+                                       {}}));
+    QCOMPARE(parts_of(plan), (Parts{{"chest_front", {0}}}));
   }
 
   // Without seed classes: the piece with the most garment hanging below its seams, the band
