@@ -71,7 +71,7 @@ int train_classifier_command(const std::vector<std::string>& args) {
       load_labelled_patterns(split_files(files, "held-out"), labeller);
   const double feature_seconds = seconds_since(start);
   std::printf(
-      "%zu patterns: %zu training (+%zu variants: whole chests, tops), "
+      "%zu patterns: %zu training (+%zu variants: whole chests, tops, taller and shorter cuts), "
       "%zu held out (position %% 5 == 0); meshing and features in %.1f s\n",
       files.size(), training_files.size(), training.size() - training_files.size(), held_out.size(),
       feature_seconds);
@@ -105,7 +105,8 @@ int train_classifier_command(const std::vector<std::string>& args) {
        {"split", "training = name-sorted position % 5 != 0 (" +
                      std::to_string(training_files.size()) + " patterns, " +
                      std::to_string(training.size() - training_files.size()) +
-                     " variants: whole chests, tops alone, chests alone)"},
+                     " variants: whole chests, tops alone, chests alone, each also 1.4 and 0.75 "
+                     "times as tall)"},
        {"labels", "panel_regions.json class7, skirt panels by placement (side gores: other)"},
        {"network", std::to_string(shape.heads) + " heads x " + std::to_string(shape.head_width) +
                        ", then " + std::to_string(shape.classes) + " classes"},

@@ -125,6 +125,18 @@ std::vector<std::vector<int>> top_panel_sets(const Pattern& pattern,
   return sets;
 }
 
+// The same pieces cut taller or shorter: every rest position's height times `factor`. Pattern sets
+// differ most in lengths (a tee to the hip where GarmentCode cuts its bodices at the waist, a
+// shorter skirt), while widths are held near the body's girths; a classifier that has only seen
+// GarmentCode's proportions takes a hip-length tee front for a skirt panel.
+Garment stretched_vertically(const Garment& garment, double factor) {
+  Garment stretched = garment;
+  stretched.rest_positions.col(1) *= factor;
+  for (Piece& piece : stretched.pieces)
+    piece.outline_area_m2 *= factor;
+  return stretched;
+}
+
 FeatureNormalisation fit_normalisation(const std::vector<LabelledPattern>& patterns) {
   const auto fit = [](const std::vector<const Eigen::MatrixXd*>& blocks, Eigen::Index columns,
                       Eigen::VectorXd& mean, Eigen::VectorXd& scale) {
@@ -240,6 +252,20 @@ std::vector<LabelledPattern> load_labelled_patterns(const std::vector<std::files
         for (int panel : panels)
           top_labels.push_back(piece_labels[panel]);
         add(top, top_labels, build_seed_graph(top, whole_chest_groups(top, top_labels)));
+        for (double factor : kHeightStretches) {
+          const Garment stretched = stretched_vertically(top, factor);
+          add(stretched, top_labels,
+              build_seed_graph(stretched, whole_chest_groups(stretched, top_labels)));
+        }
+      }
+      for (double factor : kHeightStretches) {
+        const Garment stretched = stretched_vertically(garment, factor);
+        SeedGraph stretched_graph = build_seed_graph(stretched);
+        const std::size_t stretched_count = stretched_graph.groups.size();
+        add(stretched, piece_labels, std::move(stretched_graph));
+        const std::vector<std::vector<int>> whole = whole_chest_groups(stretched, piece_labels);
+        if (whole.size() < stretched_count)
+          add(stretched, piece_labels, build_seed_graph(stretched, whole));
       }
     } catch (const std::exception& error) {
       errors[i] = error.what();

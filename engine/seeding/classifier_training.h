@@ -3,6 +3,7 @@
 // fixed seed, fixed order of every floating-point sum: same data, same weights) and fast (a few
 // seconds of optimisation on one core after the patterns are meshed).
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -15,6 +16,10 @@
 #include "engine/seeding/seed_graph.h"
 
 namespace garment {
+
+// Height factors of the stretched training variants: GarmentCode's bodices end at the waist,
+// other pattern sets' tees at the hip (about 1.4 times as tall); 0.75 for the shorter cuts.
+inline constexpr std::array<double, 2> kHeightStretches = {1.4, 0.75};
 
 struct LabelledPattern {
   std::filesystem::path file;
@@ -31,7 +36,9 @@ struct LabelledPattern {
 // other pattern sets use: one in which every front (or back) chest made of two halves sewn
 // together is one seed piece (GarmentCode cuts every bodice in halves, other patterns often in one
 // piece), and, for a pattern with chest pieces, the top alone (chest pieces and what is sewn to
-// them, without waist and pelvis pieces) and the chest pieces alone, each with whole chests.
+// them, without waist and pelvis pieces) and the chest pieces alone, each with whole chests; and
+// each of these, and the whole pattern with and without whole chests, with its pieces cut taller
+// and shorter (rest heights × kHeightStretches).
 std::vector<LabelledPattern> load_labelled_patterns(const std::vector<std::filesystem::path>& files,
                                                     const PanelLabeller& labeller,
                                                     bool training_variants = false,

@@ -5,6 +5,7 @@
 #include <QtTest>
 
 #include <algorithm>
+#include <cmath>
 
 #include <nlohmann/json.hpp>
 
@@ -36,6 +37,21 @@ std::vector<std::filesystem::path> held_out_files(const std::filesystem::path& f
   for (std::size_t i = 0; i < files.size(); ++i)
     if (is_held_out(i)) held_out.push_back(files[i]);
   return held_out;
+}
+
+// The GarmentCode subset in tests/data/seeding, loaded as is and with its training variants.
+struct SubsetWithVariants {
+  std::vector<std::filesystem::path> files;
+  std::vector<LabelledPattern> plain, variants;
+};
+
+SubsetWithVariants subset_with_variants() {
+  const PanelLabeller labeller = PanelLabeller::load(test::test_data("seeding/panel_regions.json"));
+  SubsetWithVariants subset;
+  subset.files = pattern_files(test::test_data("seeding/garmentcode_random"));
+  subset.plain = load_labelled_patterns(subset.files, labeller);
+  subset.variants = load_labelled_patterns(subset.files, labeller, true);
+  return subset;
 }
 
 }  // namespace
@@ -132,12 +148,7 @@ class ClassifierTest : public QObject {
   // top alone (chests and what is sewn to them, no waist or pelvis piece) and the chests alone,
   // each a sub-set of the pattern's pieces keeping their labels.
   void trainingVariantsAddTopsAndChests() {
-    const PanelLabeller labeller =
-        PanelLabeller::load(test::test_data("seeding/panel_regions.json"));
-    const std::vector<std::filesystem::path> files =
-        pattern_files(test::test_data("seeding/garmentcode_random"));
-    const auto plain = load_labelled_patterns(files, labeller);
-    const auto variants = load_labelled_patterns(files, labeller, true);
+    const auto [files, plain, variants] = subset_with_variants();
     QCOMPARE(plain.size(), files.size());
     int tops = 0, chests_alone = 0;
     std::size_t original = 0;
@@ -172,6 +183,50 @@ class ClassifierTest : public QObject {
     qInfo("%zu patterns: %d tops, %d chests alone", plain.size(), tops, chests_alone);
     QVERIFY(tops > 0);
     QVERIFY(chests_alone > 0);
+  }
+
+  // The taller and shorter cuts: the same pieces, grouped alike, whose single-piece seed pieces
+  // are kHeightStretches times as tall and as large, and exactly as wide, as in the pattern.
+  void trainingVariantsStretchHeightsOnly() {
+    const auto [files, plain, variants] = subset_with_variants();
+    const std::vector<std::string> names = node_feature_names();
+    const auto column = [&](const char* name) {
+      return static_cast<Eigen::Index>(std::find(names.begin(), names.end(), name) - names.begin());
+    };
+    const Eigen::Index width = column("log_width_m"), height = column("log_height_m"),
+                       area = column("log_area_m2");
+    std::vector<int> stretched(kHeightStretches.size(), 0);
+    for (const LabelledPattern& source : plain) {
+      for (const LabelledPattern& variant : variants) {
+        if (variant.file != source.file || variant.piece_names != source.piece_names ||
+            variant.graph.groups != source.graph.groups)
+          continue;
+        const double log_factor =
+            variant.graph.node_features(0, height) - source.graph.node_features(0, height);
+        if (std::abs(log_factor) < 1e-9) continue;  // the pattern itself
+        const auto factor =
+            std::find_if(kHeightStretches.begin(), kHeightStretches.end(),
+                         [&](double f) { return std::abs(std::log(f) - log_factor) < 1e-6; });
+        QVERIFY2(factor != kHeightStretches.end(), qPrintable(QString::number(log_factor)));
+        ++stretched[factor - kHeightStretches.begin()];
+        for (int g = 0; g < source.graph.node_count(); ++g) {
+          if (source.graph.groups[g].size() != 1) continue;
+          QVERIFY(std::abs(variant.graph.node_features(g, height) -
+                           source.graph.node_features(g, height) - log_factor) < 1e-6);
+          QVERIFY(std::abs(variant.graph.node_features(g, area) -
+                           source.graph.node_features(g, area) - log_factor) < 1e-6);
+          QVERIFY(std::abs(variant.graph.node_features(g, width) -
+                           source.graph.node_features(g, width)) < 1e-9);
+        }
+        QCOMPARE(variant.group_labels, source.group_labels);
+      }
+    }
+    // Both cuts of most patterns: a stretch can change what the waist merge joins (a strip's aspect
+    // crosses 3), and those variants are grouped differently from their pattern.
+    for (int count : stretched) {
+      qInfo("%d stretched variants of %zu patterns", count, plain.size());
+      QVERIFY(2 * count >= static_cast<int>(plain.size()));
+    }
   }
 
   void heldOutSubsetFindsSeeds() {
