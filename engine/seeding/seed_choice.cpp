@@ -90,7 +90,7 @@ void complete_front_and_back(const PieceClassification& classification, GroupCla
 // one-sided seed leaves the other side to the rigid fit of §7.1, which lays it flat beside its
 // partner, outside it, instead of round the body (paper §8.3.1: both chest pieces as seeds). The
 // classifier must give that group at least kNeighbourSideProbability: a waistband or a hem flap it
-// never takes for a side stays out. (On the templates the sides it completes get 0.15 to 0.37.)
+// never takes for a side stays out. (The sides it completes on the templates get about 0.33.)
 constexpr double kNeighbourSideProbability = 0.1;
 
 void complete_from_neighbours(const Garment& garment, const PieceClassification& classification,
