@@ -190,13 +190,13 @@ class StudioSessionTest : public QObject {
   }
 
   void eventLoopStaysResponsiveWhileSolving() {
-    // The solve runs on the worker; what the GUI thread still does is draw the live frames. A
-    // software rasteriser (Xvfb on a shared CI machine) pays per pixel of the whole window for each
-    // of them, so the window is small here; the demo test above prints the figures at full size.
-    // Under the sanitizers every call is several times slower: latency is judged in Release.
-    if (test::sanitizer_build())
-      QSKIP("a sanitizer build: the latency is measured and asserted in the Release run");
-    open({}, {720, 450});
+    // The solve runs on the worker; what the GUI thread still does is draw the live frames. How
+    // fast that is depends on the machine (a software rasteriser under Xvfb on a shared CI machine
+    // pays per pixel of the whole window), so the test asserts what does not: the event loop keeps
+    // turning inside the phases, not only between them, and no stall of the window comes near the
+    // length of the solve. A solve on the GUI thread fails both: its timer would fire about once
+    // between phases, and the window would stall for the longest phase. The latencies are printed.
+    open(test::sanitizer_build() ? quick_options() : SessionOptions{}, {720, 450});
     ui::EventLoopLatencyProbe probe;
     // The machine's own latency first: the same window, nothing running.
     probe.start();
@@ -204,36 +204,27 @@ class StudioSessionTest : public QObject {
     QTimer::singleShot(1500, &idle_loop, &QEventLoop::quit);
     idle_loop.exec();
     probe.stop();
-    const double idle_p99 = probe.percentileDelayMs(0.99), idle_max = probe.maxDelayMs();
-    qInfo("event loop latency idle: max %.1f ms, p99 %.1f ms (%d samples)", idle_max, idle_p99,
-          probe.sampleCount());
-    // And what one frame of the window costs to draw: each live update is one, on the GUI thread.
-    QElapsedTimer paint_clock;
-    paint_clock.start();
-    for (int i = 0; i < 5; ++i)
-      window_->avatarView()->repaint();
-    const double frame_ms = paint_clock.elapsed() / 5.0;
-    qInfo("one frame of the 3D view: %.1f ms", frame_ms);
+    qInfo("event loop latency idle: max %.1f ms, p99 %.1f ms (%d samples)", probe.maxDelayMs(),
+          probe.percentileDelayMs(0.99), probe.sampleCount());
+    const int phases_before = state().phases_completed;
+    QElapsedTimer solve_clock;
+    solve_clock.start();
     probe.start();
     window_->sessionActions().run_pause->trigger();
     QVERIFY(waitFor([](const ui::SessionState& s) { return s.done; }, 240000));
     probe.stop();
-    qInfo("event loop latency while solving: max %.1f ms, p99 %.1f ms, median %.1f ms (%d samples)",
-          probe.maxDelayMs(), probe.percentileDelayMs(0.99), probe.percentileDelayMs(0.5),
-          probe.sampleCount());
-    QVERIFY(probe.sampleCount() > 20);
-    // A renderer that needs most of the 50 ms for one frame (software OpenGL on an oversubscribed
-    // machine) cannot show that the solve leaves the window alone: each frame alone blocks the
-    // loop about that long. The figures above are printed either way.
-    if (frame_ms > 25.0)
-      QSKIP(qPrintable(
-          QString("one frame takes %1 ms to draw here; the target needs < 25 ms").arg(frame_ms)));
-    // The target is judged on the 99th percentile, so that one scheduling hiccup of a shared
-    // machine (the idle figure above shows its size) does not decide; a real freeze of the window
-    // shows in the maximum, bounded at twice the target.
-    QVERIFY2(probe.percentileDelayMs(0.99) < 50.0,
-             qPrintable(QString::number(probe.percentileDelayMs(0.99))));
-    QVERIFY2(probe.maxDelayMs() < 100.0, qPrintable(QString::number(probe.maxDelayMs())));
+    const double solve_ms = static_cast<double>(solve_clock.elapsed());
+    const int phases = state().phases_completed - phases_before;
+    qInfo(
+        "event loop latency while solving (%d phases, %.0f ms): max %.1f ms, p99 %.1f ms, "
+        "median %.1f ms (%d samples)",
+        phases, solve_ms, probe.maxDelayMs(), probe.percentileDelayMs(0.99),
+        probe.percentileDelayMs(0.5), probe.sampleCount());
+    QVERIFY(phases > 3);
+    QVERIFY2(probe.sampleCount() > 2 * phases,
+             qPrintable(QString("%1 ticks over %2 phases").arg(probe.sampleCount()).arg(phases)));
+    QVERIFY2(probe.maxDelayMs() < 0.25 * solve_ms,
+             qPrintable(QString("stalled %1 of %2 ms").arg(probe.maxDelayMs()).arg(solve_ms)));
   }
 
   void manualSeedThroughTheWidgets() {
