@@ -71,7 +71,8 @@ int train_classifier_command(const std::vector<std::string>& args) {
       load_labelled_patterns(split_files(files, "held-out"), labeller);
   const double feature_seconds = seconds_since(start);
   std::printf(
-      "%zu patterns: %zu training (+%zu variants: whole chests, tops, taller and shorter cuts), "
+      "%zu patterns: %zu training (+%zu variants: whole chests, tops, taller and shorter cuts, "
+      "tops lengthened at the hem), "
       "%zu held out (position %% 5 == 0); meshing and features in %.1f s\n",
       files.size(), training_files.size(), training.size() - training_files.size(), held_out.size(),
       feature_seconds);

@@ -220,6 +220,28 @@ GatModel train_member(const std::vector<GatInput>& inputs,
 
 }  // namespace
 
+Garment lengthened_at_hem(const Garment& garment, double factor) {
+  Garment lengthened = garment;
+  for (Piece& piece : lengthened.pieces) {
+    auto heights = lengthened.rest_positions.col(1).segment(piece.first_vertex, piece.vertex_count);
+    const double cut = 0.5 * (heights.minCoeff() + heights.maxCoeff());
+    const auto polygon_area = [&](const Eigen::MatrixX2d& positions) {
+      double twice = 0.0;
+      for (std::size_t i = 0; i < piece.outline.size(); ++i) {
+        const auto a = positions.row(piece.outline[i]);
+        const auto b = positions.row(piece.outline[(i + 1) % piece.outline.size()]);
+        twice += a.x() * b.y() - a.y() * b.x();
+      }
+      return 0.5 * twice;
+    };
+    const double before = polygon_area(lengthened.rest_positions);
+    for (Eigen::Index v = 0; v < heights.size(); ++v)
+      if (heights(v) < cut) heights(v) = cut - (cut - heights(v)) * factor;
+    if (before > 0.0) piece.outline_area_m2 *= polygon_area(lengthened.rest_positions) / before;
+  }
+  return lengthened;
+}
+
 std::vector<LabelledPattern> load_labelled_patterns(const std::vector<std::filesystem::path>& files,
                                                     const PanelLabeller& labeller,
                                                     bool training_variants, Observer* observer) {
@@ -257,6 +279,9 @@ std::vector<LabelledPattern> load_labelled_patterns(const std::vector<std::files
           add(stretched, top_labels,
               build_seed_graph(stretched, whole_chest_groups(stretched, top_labels)));
         }
+        const Garment lengthened = lengthened_at_hem(top, kHemLengthening);
+        add(lengthened, top_labels,
+            build_seed_graph(lengthened, whole_chest_groups(lengthened, top_labels)));
       }
       for (double factor : kHeightStretches) {
         const Garment stretched = stretched_vertically(garment, factor);

@@ -20,6 +20,9 @@ namespace garment {
 // Height factors of the stretched training variants: GarmentCode's bodices end at the waist,
 // other pattern sets' tees at the hip (about 1.4 times as tall); 0.75 for the shorter cuts.
 inline constexpr std::array<double, 2> kHeightStretches = {1.4, 0.75};
+// Factor on the lower half of each piece of the hem-lengthened tops: 1.8 makes a bodice cut to the
+// waist as tall as a tee to the hip with its armholes unchanged.
+inline constexpr double kHemLengthening = 1.8;
 
 struct LabelledPattern {
   std::filesystem::path file;
@@ -38,11 +41,18 @@ struct LabelledPattern {
 // piece), and, for a pattern with chest pieces, the top alone (chest pieces and what is sewn to
 // them, without waist and pelvis pieces) and the chest pieces alone, each with whole chests; and
 // each of these, and the whole pattern with and without whole chests, with its pieces cut taller
-// and shorter (rest heights × kHeightStretches).
+// and shorter (rest heights × kHeightStretches); and the tops also lengthened at the hem
+// (lengthened_at_hem, kHemLengthening).
 std::vector<LabelledPattern> load_labelled_patterns(const std::vector<std::filesystem::path>& files,
                                                     const PanelLabeller& labeller,
                                                     bool training_variants = false,
                                                     Observer* observer = nullptr);
+
+// The same pieces with the lower half of each cut `factor` times as tall (rest heights below the
+// middle of each piece's height stretched away from it): a top lengthened at the hem, a hip-length
+// tee where GarmentCode's bodices end at the waist, with its neckline, shoulders and armholes as
+// they were. Each piece's outline_area_m2 grows as the polygon area of its outline does.
+Garment lengthened_at_hem(const Garment& garment, double factor);
 
 // The fixed 80/20 split of a dataset: the file at position i of the name-sorted list
 // (pattern_files) is held out for evaluation when i % 5 == 0, used for training otherwise. For

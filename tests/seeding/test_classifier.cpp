@@ -11,6 +11,8 @@
 
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
+#include "engine/pattern/garment_mesh.h"
+#include "engine/pattern/pattern.h"
 #include "engine/pattern/pattern_files.h"
 #include "engine/seeding/classification_report.h"
 #include "engine/seeding/classifier_training.h"
@@ -229,6 +231,50 @@ class ClassifierTest : public QObject {
     }
   }
 
+  // The tops lengthened at the hem: every piece keeps its widths and the upper half of its cut;
+  // below the middle of its height, every point is `factor` times as far from that middle, and the
+  // piece's area grows as its mesh's does.
+  void hemLengtheningKeepsTheUpperHalf() {
+    int pieces_lengthened = 0;
+    for (const std::filesystem::path& file :
+         pattern_files(test::test_data("seeding/garmentcode_random"))) {
+      const Garment garment = build_garment(load_pattern(file));
+      const Garment lengthened = lengthened_at_hem(garment, kHemLengthening);
+      QCOMPARE(lengthened.rest_positions.rows(), garment.rest_positions.rows());
+      QVERIFY(lengthened.rest_positions.col(0) == garment.rest_positions.col(0));
+      const auto mesh_area = [](const Garment& g, int piece) {
+        double area = 0.0;
+        for (Eigen::Index t = 0; t < g.triangles.rows(); ++t) {
+          if (g.triangle_piece(t) != piece) continue;
+          const Eigen::RowVector2d a = g.rest_positions.row(g.triangles(t, 0));
+          const Eigen::Vector2d ab = g.rest_positions.row(g.triangles(t, 1)) - a;
+          const Eigen::Vector2d ac = g.rest_positions.row(g.triangles(t, 2)) - a;
+          area += 0.5 * (ab.x() * ac.y() - ab.y() * ac.x());
+        }
+        return area;
+      };
+      for (int p = 0; p < static_cast<int>(garment.pieces.size()); ++p) {
+        const Piece& piece = garment.pieces[p];
+        const auto before =
+            garment.rest_positions.col(1).segment(piece.first_vertex, piece.vertex_count);
+        const auto after =
+            lengthened.rest_positions.col(1).segment(piece.first_vertex, piece.vertex_count);
+        const double middle = 0.5 * (before.minCoeff() + before.maxCoeff());
+        for (Eigen::Index v = 0; v < before.size(); ++v) {
+          const double expected =
+              before(v) >= middle ? before(v) : middle - kHemLengthening * (middle - before(v));
+          QVERIFY(std::abs(after(v) - expected) < 1e-12);
+        }
+        const double growth = mesh_area(lengthened, p) / mesh_area(garment, p);
+        QVERIFY(growth > 1.0 && growth < kHemLengthening);
+        QVERIFY(std::abs(lengthened.pieces[p].outline_area_m2 / piece.outline_area_m2 - growth) <
+                1e-3 * growth);
+        ++pieces_lengthened;
+      }
+    }
+    QVERIFY(pieces_lengthened > 100);
+  }
+
   void heldOutSubsetFindsSeeds() {
     // 20 held-out GarmentCode patterns copied into tests/data (see LICENSES.md there).
     const PanelLabeller labeller =
@@ -284,9 +330,9 @@ class ClassifierTest : public QObject {
     QCOMPARE(report.patterns, 23);
     QCOMPARE(report.neck_or_waist.found, report.neck_or_waist.patterns);
     QVERIFY(report.neck_or_waist_false_alarms <= report.patterns_without_neck_or_waist / 5);
-    // Templates cut bodices whole where GarmentCode cuts them in halves: chest detection
-    // generalises only partly (see the issue notes); this guards against regressions.
-    QVERIFY(report.chest.rate() >= 0.5);
+    // The paper's chest rate on another pattern set: its tees are cut whole and to the hip, where
+    // GarmentCode cuts bodices in halves and to the waist (the training variants teach both).
+    QVERIFY(report.chest.rate() >= 0.89);
   }
 };
 
