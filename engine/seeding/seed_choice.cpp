@@ -67,10 +67,18 @@ std::vector<int> groups_of_class(const PieceClassification& classification,
 }
 
 // A garment has a front and a back. When the classifier puts every group of a front/back pair of
-// classes on one side (the identical front and back panels of a plain skirt get the same
-// probabilities), the group most probably of the other side, after the most probable group of this
-// side, goes there if the classifier gives it at least kOtherSideProbability.
+// classes on one side, the group most probably of the other side, after the most probable group of
+// this side, goes there if the classifier gives it at least kOtherSideProbability, or if the
+// classifier cannot tell it from the most probable group at all (the identical front and back
+// panels of a plain skirt get the same probabilities however sure it is of the side: left on one
+// side, both panels go to it, one on top of the other).
 constexpr double kOtherSideProbability = 0.25;
+
+bool indistinguishable(const PieceClassification& classification, int a, int b) {
+  return (classification.probabilities.row(a) - classification.probabilities.row(b))
+             .cwiseAbs()
+             .maxCoeff() < 1e-9;
+}
 
 void complete_front_and_back(const PieceClassification& classification, GroupClasses& classes,
                              SeedClass front, SeedClass back) {
@@ -80,7 +88,8 @@ void complete_front_and_back(const PieceClassification& classification, GroupCla
     const auto other_side = std::max_element(groups.begin() + 1, groups.end(), [&](int a, int b) {
       return classification.probability(a, missing) < classification.probability(b, missing);
     });
-    if (classification.probability(*other_side, missing) >= kOtherSideProbability)
+    if (classification.probability(*other_side, missing) >= kOtherSideProbability ||
+        indistinguishable(classification, *other_side, groups.front()))
       classes[*other_side] = missing;
   }
 }

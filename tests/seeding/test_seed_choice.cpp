@@ -2,9 +2,9 @@
 // with given class probabilities: the neck or waist piece wins over chest and pelvis pieces when
 // it closes into a ring (else it is passed over), front and back pieces go to their two
 // locations, a pair of identical panels that the classifier puts on one side is split into front
-// and back (only when it gives the other side a real chance), a side found alone takes the piece
-// sewn to it that is most probably the other side, and without any seed class the rule picks the
-// piece with the most garment below its seams.
+// and back (when it gives the other side a real chance, or cannot tell the two apart), a side
+// found alone takes the piece sewn to it that is most probably the other side, and without any
+// seed class the rule picks the piece with the most garment below its seams.
 
 #include <QtTest>
 
@@ -145,6 +145,17 @@ class SeedChoiceTest : public QObject {
                                                    {}}));
     QCOMPARE(parts_of(plan), (Parts{{"pelvis_front", {0}}, {"pelvis_back", {1}}}));
     QCOMPARE(plan.reason, std::string("pelvis pieces (classifier)"));
+  }
+
+  // However sure the classifier is of the side, it cannot tell identical panels apart (it gives
+  // them the same probabilities): one of them is the other side.
+  void indistinguishablePanelsOnOneSideAreSplit() {
+    const SeedPlan plan =
+        choose_seed(four_panels(), classification({{{kBackPelvis, 0.78}, {kFrontPelvis, 0.08}},
+                                                   {{kBackPelvis, 0.78}, {kFrontPelvis, 0.08}},
+                                                   {},
+                                                   {}}));
+    QCOMPARE(parts_of(plan), (Parts{{"pelvis_front", {1}}, {"pelvis_back", {0}}}));
   }
 
   // Two pieces the classifier firmly puts on the back (the two halves of a back panel) stay
