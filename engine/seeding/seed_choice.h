@@ -1,12 +1,13 @@
 #pragma once
 // The seed (paper §5): the piece(s) arranged first and the body location each goes to. Automatic:
-// the neck or waist piece (with the pieces of its kind sewn to it: a collar in four parts, a
-// waistband in two) when some of these close into a ring round the body, else the chest pieces
-// (front and back), else the pelvis pieces (front and back, for skirts and trousers without a
-// waistband; when the classifier finds one side only, the other is the piece sewn to it that it
+// the waist piece (with the pieces of its kind sewn to it: a waistband in two) when some of these
+// close into a ring round the body, else the chest pieces (front and back), else the neck piece (a
+// collar ring, likewise), else the pelvis pieces (front and back, for skirts and trousers without
+// a waistband; when the classifier finds one side only, the other is the piece sewn to it that it
 // ranks highest for that side), else a rule: the piece with the most garment hanging below its
-// seams (Eq. 1), as the neck or waist seed would have. Manual (§5.1.2): any set of pieces and one
-// of the 15 body locations.
+// seams (Eq. 1), as the neck or waist seed would have. The paper puts the neck piece with the
+// waist piece, before the chests; collars come after the chests here (seed_choice.cpp gives the
+// figures). Manual (§5.1.2): any set of pieces and one of the 15 body locations.
 
 #include <string>
 #include <vector>

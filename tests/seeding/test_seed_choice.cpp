@@ -1,10 +1,11 @@
 // The seed choice (engine/seeding/seed_choice.h, paper §5) on a hand-made garment of four panels
-// with given class probabilities: the neck or waist piece wins over chest and pelvis pieces when
-// it closes into a ring (else it is passed over), front and back pieces go to their two
-// locations, a pair of identical panels that the classifier puts on one side is split into front
-// and back (when it gives the other side a real chance, or cannot tell the two apart), a side
-// found alone takes the piece sewn to it that is most probably the other side, and without any
-// seed class the rule picks the piece with the most garment below its seams.
+// with given class probabilities: the waist piece wins over chest and pelvis pieces, and the neck
+// piece over pelvis pieces but not chest pieces, when it closes into a ring (else it is passed
+// over), front and back pieces go to their two locations, a pair of identical panels that the
+// classifier puts on one side is split into front and back (when it gives the other side a real
+// chance, or cannot tell the two apart), a side found alone takes the piece sewn to it that is
+// most probably the other side, and without any seed class the rule picks the piece with the most
+// garment below its seams.
 
 #include <QtTest>
 
@@ -118,13 +119,44 @@ class SeedChoiceTest : public QObject {
   }
 
   // The flap is sewn to nothing at its sides: it cannot wrap the neck, however sure the
-  // classifier is, and the chest pieces are the seed.
+  // classifier is, and the pelvis pieces (which come after a collar ring) are the seed.
   void neckPieceThatIsNoRingIsPassedOver() {
-    const SeedPlan plan = choose_seed(four_panels(), classification({{{SeedClass::FrontChest, 0.8}},
-                                                                     {{SeedClass::BackChest, 0.7}},
-                                                                     {},
-                                                                     {{SeedClass::Neck, 0.95}}}));
+    const SeedPlan plan = choose_seed(
+        four_panels(),
+        classification(
+            {{{kFrontPelvis, 0.8}}, {{kBackPelvis, 0.7}}, {}, {{SeedClass::Neck, 0.95}}}));
+    QCOMPARE(parts_of(plan), (Parts{{"pelvis_front", {0}}, {"pelvis_back", {1}}}));
+  }
+
+  // The bands of banded_skirt() close into a ring. As a collar, it gives way to chest pieces...
+  void collarRingGivesWayToChestPieces() {
+    const SeedPlan plan =
+        choose_seed(banded_skirt(), classification({{{SeedClass::FrontChest, 0.8}},
+                                                    {{SeedClass::BackChest, 0.7}},
+                                                    {{SeedClass::Neck, 0.95}},
+                                                    {{SeedClass::Neck, 0.9}}}));
     QCOMPARE(parts_of(plan), (Parts{{"chest_front", {0}}, {"chest_back", {1}}}));
+    QCOMPARE(plan.reason, std::string("chest pieces (classifier)"));
+  }
+
+  // ...but not to pelvis pieces,...
+  void collarRingComesBeforePelvisPieces() {
+    const SeedPlan plan = choose_seed(banded_skirt(), classification({{{kFrontPelvis, 0.9}},
+                                                                      {{kBackPelvis, 0.9}},
+                                                                      {{SeedClass::Neck, 0.6}},
+                                                                      {{SeedClass::Neck, 0.5}}}));
+    QCOMPARE(parts_of(plan), (Parts{{"neck", {2, 3}}}));
+    QCOMPARE(plan.reason, std::string("neck piece (classifier)"));
+  }
+
+  // ...and as a waistband it comes before the chest pieces.
+  void waistRingComesBeforeChestPieces() {
+    const SeedPlan plan =
+        choose_seed(banded_skirt(), classification({{{SeedClass::FrontChest, 0.9}},
+                                                    {{SeedClass::BackChest, 0.9}},
+                                                    {{SeedClass::Waist, 0.6}},
+                                                    {{SeedClass::Waist, 0.5}}}));
+    QCOMPARE(parts_of(plan), (Parts{{"waist", {2, 3}}}));
   }
 
   void frontAndBackGoToTheirLocations() {
