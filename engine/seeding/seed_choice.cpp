@@ -175,7 +175,8 @@ std::vector<int> SeedPlan::pieces() const {
 SeedPlan choose_seed(const Garment& garment, const PieceClassification& classification) {
   SeedPlan plan;
   GroupClasses classes = most_probable_classes(classification);
-  // 1. The waist piece (a waistband closing round the body).
+  // 1. The waist piece (a waistband closing round the body). Chest pieces first instead changed
+  // the seed of 165 of the 500: 26 came out clean that had not, 25 that had did not.
   if (std::vector<int> waist = ring_part(garment, classification, classes, SeedClass::Waist);
       !waist.empty()) {
     plan.parts.push_back({std::move(waist), "waist"});
@@ -185,7 +186,7 @@ SeedPlan choose_seed(const Garment& garment, const PieceClassification& classifi
   // 2. Front and back chest pieces, before a collar: the paper's own limits (§9) name collars,
   // which fold back over the garment against the rule that every piece faces away from the body;
   // wrapped round the neck as the seed, they twist the bodice they are sewn to. Of the 21
-  // garments of the 500 that took a collar ring as their seed, 4 came out clean; 9 do from their
+  // garments of the 500 that took a collar ring as their seed, 4 came out clean; 8 do from their
   // chest (or waist) pieces, and none is lost. A manual seed still starts from the collar.
   if (std::vector<SeedPart> chests =
           front_and_back_parts(garment, classification, classes, SeedClass::FrontChest,
