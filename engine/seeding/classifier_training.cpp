@@ -7,6 +7,7 @@
 
 #include "engine/core/error.h"
 #include "engine/pattern/garment_mesh.h"
+#include "engine/pattern/outline.h"
 #include "engine/seeding/waist_merge.h"
 
 namespace garment {
@@ -226,13 +227,10 @@ Garment lengthened_at_hem(const Garment& garment, double factor) {
     auto heights = lengthened.rest_positions.col(1).segment(piece.first_vertex, piece.vertex_count);
     const double cut = 0.5 * (heights.minCoeff() + heights.maxCoeff());
     const auto polygon_area = [&](const Eigen::MatrixX2d& positions) {
-      double twice = 0.0;
-      for (std::size_t i = 0; i < piece.outline.size(); ++i) {
-        const auto a = positions.row(piece.outline[i]);
-        const auto b = positions.row(piece.outline[(i + 1) % piece.outline.size()]);
-        twice += a.x() * b.y() - a.y() * b.x();
-      }
-      return 0.5 * twice;
+      std::vector<Eigen::Vector2d> polygon;
+      for (int v : piece.outline)
+        polygon.push_back(positions.row(v).transpose());
+      return polygon_signed_area(polygon);
     };
     const double before = polygon_area(lengthened.rest_positions);
     for (Eigen::Index v = 0; v < heights.size(); ++v)
