@@ -16,6 +16,24 @@ constexpr double kContinuationWeight = 0.5;
 
 }  // namespace
 
+SeamPartners seam_partners(const Garment& garment, int piece, const std::vector<bool>& placed,
+                           const Eigen::MatrixX3d& positions) {
+  const Piece& info = garment.pieces[piece];
+  SeamPartners partners{Eigen::MatrixX3d::Zero(info.vertex_count, 3),
+                        std::vector<int>(info.vertex_count, 0)};
+  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
+    for (int side = 0; side < 2; ++side) {
+      const int own = garment.sewing_pairs(k, side), partner = garment.sewing_pairs(k, 1 - side);
+      if (garment.vertex_piece(own) != piece || !placed[garment.vertex_piece(partner)]) continue;
+      partners.means.row(own - info.first_vertex) += positions.row(partner);
+      ++partners.counts[own - info.first_vertex];
+    }
+  }
+  for (int v = 0; v < info.vertex_count; ++v)
+    if (partners.counts[v] > 0) partners.means.row(v) /= partners.counts[v];
+  return partners;
+}
+
 RigidTransform fit_rigid(const Eigen::MatrixX3d& source, const Eigen::MatrixX3d& target,
                          const Eigen::VectorXd& weights) {
   RigidTransform result;

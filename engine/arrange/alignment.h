@@ -27,6 +27,16 @@ struct RigidTransform {
 RigidTransform fit_rigid(const Eigen::MatrixX3d& source, const Eigen::MatrixX3d& target,
                          const Eigen::VectorXd& weights);
 
+// Where each vertex of a piece is sewn to: the mean position of its partners on placed pieces.
+struct SeamPartners {
+  Eigen::MatrixX3d means;   // #piece vertices × 3 (piece-local rows); meaningful where counts > 0
+  std::vector<int> counts;  // per piece vertex: its partners on placed pieces, 0 off the seam
+};
+
+// piece's partners on the pieces with placed[p] = true; positions: #V×3.
+SeamPartners seam_partners(const Garment& garment, int piece, const std::vector<bool>& placed,
+                           const Eigen::MatrixX3d& positions);
+
 class PieceAligner {
  public:
   explicit PieceAligner(const Garment& garment);

@@ -37,16 +37,7 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
                      Eigen::MatrixX3d& positions, Eigen::MatrixX3d& outsides) {
   const Piece& info = garment.pieces[piece];
   // Where each seam vertex of the piece goes: the mean of its placed partners.
-  Eigen::MatrixX3d partner_sum = Eigen::MatrixX3d::Zero(info.vertex_count, 3);
-  std::vector<int> partner_count(info.vertex_count, 0);
-  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
-    for (int side = 0; side < 2; ++side) {
-      const int own = garment.sewing_pairs(k, side), partner = garment.sewing_pairs(k, 1 - side);
-      if (garment.vertex_piece(own) != piece || !placed[garment.vertex_piece(partner)]) continue;
-      partner_sum.row(own - info.first_vertex) += positions.row(partner);
-      ++partner_count[own - info.first_vertex];
-    }
-  }
+  const SeamPartners partners = seam_partners(garment, piece, placed, positions);
   const auto rest = [&](int v) -> Eigen::Vector2d { return garment.rest_positions.row(v); };
 
   std::vector<SeamSegment> segments;
@@ -56,14 +47,14 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
   for (std::size_t k = 0; k < n; ++k) {
     const int a = info.outline[k] - info.first_vertex;
     const int b = info.outline[(k + 1) % n] - info.first_vertex;
-    if (partner_count[a] == 0 || partner_count[b] == 0) continue;
+    if (partners.counts[a] == 0 || partners.counts[b] == 0) continue;
     SeamSegment segment;
     segment.first = a;
     segment.second = b;
     segment.rest_start = rest(info.first_vertex + a);
     segment.rest_end = rest(info.first_vertex + b);
-    segment.start = partner_sum.row(a).transpose() / partner_count[a];
-    segment.end = partner_sum.row(b).transpose() / partner_count[b];
+    segment.start = partners.means.row(a).transpose();
+    segment.end = partners.means.row(b).transpose();
     const Eigen::Vector2d step = segment.rest_end - segment.rest_start;
     const Eigen::Vector3d chord = segment.end - segment.start;
     if (!(step.norm() > 0.0) || !(chord.norm() > 0.0)) continue;
