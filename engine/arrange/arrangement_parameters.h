@@ -3,6 +3,7 @@
 // constant across all examples (§8) and gives the solver iteration budgets per step in its Fig. 5;
 // ours were chosen by measurement on the shared GarmentCode patterns (bench/bench_pipeline).
 
+#include "engine/arrange/limb_wrap.h"
 #include "engine/arrange/seam_drape.h"
 #include "engine/arrange/selection.h"
 #include "engine/energy/energy_parameters.h"
@@ -30,6 +31,9 @@ struct ArrangementParameters {
   // §7.1's start for pieces hanging from a seam round the body that the rigid fit lays sideways
   // (seam_drape.h); sideways_below = −1 keeps every rigid fit.
   SeamDrapeSettings seam_drape;
+  // §7.1's start for pieces sewn round an arm, sleeves and cuffs (limb_wrap.h); reach = 0 keeps
+  // every rigid fit.
+  LimbWrapSettings limb_wrap;
   // §7.2: body repulsion is switched on `rings_per_round` rings at a time, breadth-first from the
   // sewing boundary, with this budget per round; then a final round over everything.
   int rings_per_round = 3;

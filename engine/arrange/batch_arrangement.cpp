@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "engine/arrange/limb_wrap.h"
 #include "engine/energy/fixing_potential.h"
 #include "engine/energy/objective.h"
 #include "engine/energy/self_repulsion_potential.h"
@@ -67,16 +68,23 @@ void BatchArrangement::place_new_pieces(Eigen::MatrixX3d& positions) {
   Eigen::MatrixX3d outsides(garment.vertex_count(), 3);
   for (int piece : pieces_) {
     if (placed_[piece]) continue;
-    // Aligned to the arranged pieces, which have their shape; batch pieces placed before it are
-    // flat rigid copies and only guide a piece that has no arranged partner (after growth).
+    // Aligned to the arranged pieces, which have their shape; batch pieces placed before it (rigid
+    // copies, or wrapped round an arm) only guide a piece that has no arranged partner (after
+    // growth, or a cuff selected with its sleeve).
     RigidTransform transform = context_->aligner.fit(piece, arranged_, positions);
-    if (transform.sewing_pairs < 2) transform = context_->aligner.fit(piece, placed_, positions);
+    const std::vector<bool>* guides = &arranged_;
+    if (transform.sewing_pairs < 2) {
+      transform = context_->aligner.fit(piece, placed_, positions);
+      guides = &placed_;
+    }
     context_->aligner.place(piece, transform, positions);
     const Piece& info = garment.pieces[piece];
     outsides.middleRows(info.first_vertex, info.vertex_count).rowwise() =
         transform.rotation.col(2).transpose();
-    drape_from_seam(garment, piece, arranged_, transform, context_->parameters.seam_drape,
-                    positions, outsides);
+    if (!wrap_round_arm(garment, piece, *guides, context_->landmarks, *context_->body,
+                        context_->parameters.limb_wrap, positions, outsides))
+      drape_from_seam(garment, piece, arranged_, transform, context_->parameters.seam_drape,
+                      positions, outsides);
     context_->aligner.lift_out_of_body(piece, outsides, *context_->body,
                                        context_->parameters.energy.body_distance, positions);
     placed_[piece] = true;

@@ -51,6 +51,10 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("seam_drape.sideways_below", p.seam_drape.sideways_below);
   visit("seam_drape.flat_seam_ratio", p.seam_drape.flat_seam_ratio);
   visit("seam_drape.flare_angle", p.seam_drape.flare_angle);
+  visit("limb_wrap.reach", p.limb_wrap.reach);
+  visit("limb_wrap.above_armpit", p.limb_wrap.above_armpit);
+  visit("limb_wrap.least_turn", p.limb_wrap.least_turn);
+  visit("limb_wrap.clearance", p.limb_wrap.clearance);
   visit("rings_per_round", p.rings_per_round);
   visit("body_round.first", p.body_round.first);
   visit("body_round.revisit", p.body_round.revisit);
@@ -135,6 +139,14 @@ void apply_parameters_json(const std::string& json_text, const std::string& sour
     throw_input_error(source, "seam_drape.seam_extent", "must be more than 0 and at most 1");
   if (!(drape.flat_seam_ratio > 0.0))
     throw_input_error(source, "seam_drape.flat_seam_ratio", "must be more than 0");
+  const LimbWrapSettings& wrap = parameters.limb_wrap;
+  if (!(wrap.reach >= 0.0)) throw_input_error(source, "limb_wrap.reach", "must be 0 or more");
+  if (!(wrap.least_turn >= 0.0 && wrap.least_turn <= 2.0 * std::numbers::pi))
+    throw_input_error(source, "limb_wrap.least_turn", "must be between 0 and 2π (radians)");
+  if (!(wrap.above_armpit >= 0.0))
+    throw_input_error(source, "limb_wrap.above_armpit", "must be 0 or more");
+  if (!(wrap.clearance >= 0.0))
+    throw_input_error(source, "limb_wrap.clearance", "must be 0 or more");
   if (!(parameters.post_process_body_buffer > 0.0))
     throw_input_error(source, "post_process_body_buffer", "must be more than 0");
   if (!(parameters.post_process_edge_repulsion_factor >= 0.0))

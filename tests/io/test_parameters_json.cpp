@@ -75,6 +75,18 @@ class ParametersJsonTest : public QObject {
     QVERIFY(error_of(R"({"seam_drape": {"sideways_below": -1, "flare_angle": 0}})").isEmpty());
   }
 
+  void outOfRangeLimbWrapNamesTheKey() {
+    for (const auto& [json, key] :
+         {std::pair{R"({"limb_wrap": {"reach": -0.1}})", "limb_wrap.reach"},
+          std::pair{R"({"limb_wrap": {"above_armpit": -1}})", "limb_wrap.above_armpit"},
+          std::pair{R"({"limb_wrap": {"least_turn": 7}})", "limb_wrap.least_turn"},
+          std::pair{R"({"limb_wrap": {"clearance": -0.01}})", "limb_wrap.clearance"}}) {
+      const QString message = error_of(json);
+      QVERIFY2(message.contains("p.json") && message.contains(key), qPrintable(message));
+    }
+    QVERIFY(error_of(R"({"limb_wrap": {"reach": 0, "least_turn": 0}})").isEmpty());
+  }
+
   void outOfRangeBodyBufferNamesTheKey() {
     const QString buffer = error_of(R"({"post_process_body_buffer": 0})");
     QVERIFY2(buffer.contains("post_process_body_buffer"), qPrintable(buffer));
