@@ -116,32 +116,26 @@ double largest_stretch(const Garment& garment, const std::vector<char>& on,
   return largest;
 }
 
-// The largest distance between the pairs sewing `first` to `second`.
-double seam_gap(const Garment& garment, int first, int second, const Eigen::MatrixX3d& positions) {
-  double gap = 0.0;
+// The distances between the pairs sewing `first` to `second`, as an array.
+Eigen::ArrayXd pair_gaps(const Garment& garment, int first, int second,
+                         const Eigen::MatrixX3d& positions) {
+  std::vector<double> gaps;
   for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
     const int a = garment.sewing_pairs(k, 0), b = garment.sewing_pairs(k, 1);
     const int pa = garment.vertex_piece(a), pb = garment.vertex_piece(b);
     if ((pa == first && pb == second) || (pa == second && pb == first))
-      gap = std::max(gap, (positions.row(a) - positions.row(b)).norm());
+      gaps.push_back((positions.row(a) - positions.row(b)).norm());
   }
-  return gap;
+  return Eigen::Map<const Eigen::ArrayXd>(gaps.data(), static_cast<Eigen::Index>(gaps.size()));
 }
 
-// The mean distance between the pairs sewing `first` to `second`.
+double seam_gap(const Garment& garment, int first, int second, const Eigen::MatrixX3d& positions) {
+  return pair_gaps(garment, first, second, positions).maxCoeff();
+}
+
 double mean_seam_gap(const Garment& garment, int first, int second,
                      const Eigen::MatrixX3d& positions) {
-  double total = 0.0;
-  int pairs = 0;
-  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
-    const int a = garment.sewing_pairs(k, 0), b = garment.sewing_pairs(k, 1);
-    const int pa = garment.vertex_piece(a), pb = garment.vertex_piece(b);
-    if ((pa == first && pb == second) || (pa == second && pb == first)) {
-      total += (positions.row(a) - positions.row(b)).norm();
-      ++pairs;
-    }
-  }
-  return total / pairs;
+  return pair_gaps(garment, first, second, positions).mean();
 }
 
 }  // namespace
