@@ -13,6 +13,7 @@
 #include "engine/energy/side_barrier_potential.h"
 #include "engine/quality/exact_intersections.h"
 #include "engine/quality/garment_metrics.h"
+#include "engine/solver/quasi_newton_solver.h"
 
 namespace garment {
 
@@ -154,6 +155,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   context.gravity->set_acceleration(energy.gravity * parameters.post_process_gravity_factor);
   context.stretch->set_strain_limit(parameters.post_process_strain_limit,
                                     parameters.post_process_strain_limit_factor);
+  context.stretch->set_compression_factor(parameters.post_process_compression_factor);
   const MeshEdges& mesh = context.mesh;
   Objective objective(active);
   objective.add(context.stretch)
@@ -218,14 +220,18 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
       earlier[piece] = true;
   }
 
-  SolverSettings settings;
-  settings.max_iterations = parameters.post_process_iterations;
-  settings.stage = "post-process";
-  settings.on_iterate = on_iterate;
-  SolveReport solved = solve(objective, positions, settings, observer);
+  QuasiNewtonSettings quasi_newton;
+  quasi_newton.max_iterations = parameters.post_process_iterations;
+  quasi_newton.max_step = parameters.post_process_step;
+  quasi_newton.stage = "post-process";
+  quasi_newton.on_iterate = on_iterate;
+  const SolveReport solved = solve_quasi_newton(objective, positions, quasi_newton, observer);
   result.iterations = solved.iterations;
   result.final_energy = solved.final_energy;
 
+  SolverSettings settings;
+  settings.stage = "post-process";
+  settings.on_iterate = on_iterate;
   if (parameters.post_process_untangle_passes > 0 && solved.reason != StopReason::Cancelled)
     untangle(context, mesh, arranged, objective, settings, positions, observer, result);
 
@@ -234,6 +240,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   context.body_repulsion->set_stiffness(energy.body_repulsion_stiffness);
   context.body_repulsion->set_buffer(energy.repulsion_buffer);
   context.stretch->clear_strain_limit();
+  context.stretch->set_compression_factor(energy.stretch_compression_factor);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

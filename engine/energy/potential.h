@@ -90,6 +90,15 @@ class Potential {
   }
   virtual DiagonalKind diagonal_kind() const { return DiagonalKind::Current; }
 
+  // Other potentials: adds a scalar matrix that couples the vertices of each selected element as
+  // its Hessian does at x (the springs' Laplacian weighted by their stiffness there), for the
+  // quasi-Newton solver's preconditioner (quasi_newton_solver.h). Every call adds the same
+  // entries, only their values change. Default: nothing, the solver then sees only the
+  // potential's Hessian diagonal.
+  virtual void add_preconditioner_terms(const Positions& x, QuadraticTerms& terms) const {
+    (void)x, (void)terms;
+  }
+
   // Marks every vertex an element may write (superset allowed); sized #V.
   virtual void mark_touched_vertices(std::vector<char>& touched) const = 0;
 

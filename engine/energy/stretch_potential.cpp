@@ -79,6 +79,13 @@ void StretchPotential::set_stiffness_scale(double scale) {
   changed();
 }
 
+void StretchPotential::set_compression_factor(double factor) {
+  if (!(factor > 0.0 && factor <= 1.0))
+    throw std::invalid_argument("StretchPotential: compression factor outside (0, 1]");
+  compression_ = factor;
+  changed();
+}
+
 void StretchPotential::set_strain_limit(double strain, double factor) {
   if (!(strain >= 0.0 && factor >= 1.0))
     throw std::invalid_argument("StretchPotential: strain limit < 0 or stiffening factor < 1");
@@ -133,6 +140,22 @@ double StretchPotential::accumulate(const Positions& x, int begin, int end,
     }
   }
   return energy;
+}
+
+void StretchPotential::add_preconditioner_terms(const Positions& x, QuadraticTerms& terms) const {
+  const bool limited = limit_factor_ > 1.0;
+  for (const Spring& spring : active_) {
+    const double length = (x.row(spring.i) - x.row(spring.j)).norm();
+    double k = spring.stiffness;
+    if (length < spring.rest_length)
+      k *= compression_;
+    else if (limited && spring.rest_length > 0.0 &&
+             length > (1.0 + limit_strain_) * spring.rest_length)
+      k *= limit_factor_;
+    terms.add(spring.i, spring.i, k);
+    terms.add(spring.j, spring.j, k);
+    terms.add(spring.i, spring.j, -k);
+  }
 }
 
 void StretchPotential::mark_touched_vertices(std::vector<char>& touched) const {

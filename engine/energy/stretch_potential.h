@@ -41,6 +41,9 @@ class StretchPotential : public Potential {
 
   // Scales every spring's stiffness relative to the values given at construction.
   void set_stiffness_scale(double scale);
+  // Compressed springs keep this fraction of k, in (0, 1].
+  void set_compression_factor(double factor);
+  double compression_factor() const { return compression_; }
   // Springs past strain `strain` stiffen by `factor` (≥ 1). Dart springs (zero rest length) are
   // not limited.
   void set_strain_limit(double strain, double factor);
@@ -49,6 +52,10 @@ class StretchPotential : public Potential {
   const char* name() const override { return "stretch"; }
   int element_count() const override { return static_cast<int>(active_.size()); }
   double accumulate(const Positions& x, int begin, int end, const Accumulator& out) const override;
+  // k' (e_i − e_j)(e_i − e_j)ᵀ per spring, k' its stiffness along its direction at x (k·c when
+  // compressed, k·f past the strain limit): the matrix of projective dynamics with each spring
+  // weighted as it resists now.
+  void add_preconditioner_terms(const Positions& x, QuadraticTerms& terms) const override;
   void mark_touched_vertices(std::vector<char>& touched) const override;
   std::size_t element_bytes() const override { return active_.size() * sizeof(Spring); }
 

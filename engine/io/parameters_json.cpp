@@ -71,9 +71,11 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("revisit_seconds", p.revisit_seconds);
   visit("seed_iterations", p.seed_iterations);
   visit("post_process_iterations", p.post_process_iterations);
+  visit("post_process_step", p.post_process_step);
   visit("post_process_sewing_factor", p.post_process_sewing_factor);
   visit("post_process_repulsion_factor", p.post_process_repulsion_factor);
   visit("post_process_gravity_factor", p.post_process_gravity_factor);
+  visit("post_process_compression_factor", p.post_process_compression_factor);
   visit("post_process_body_buffer", p.post_process_body_buffer);
   visit("post_process_edge_repulsion_factor", p.post_process_edge_repulsion_factor);
   visit("post_process_leg_separation_factor", p.post_process_leg_separation_factor);
@@ -151,6 +153,12 @@ void apply_parameters_json(const std::string& json_text, const std::string& sour
     throw_input_error(source, "post_process_body_buffer", "must be more than 0");
   if (!(parameters.post_process_edge_repulsion_factor >= 0.0))
     throw_input_error(source, "post_process_edge_repulsion_factor", "must be at least 0 (0: off)");
+  if (!(parameters.post_process_step > 0.0))
+    throw_input_error(source, "post_process_step", "must be more than 0 (metres)");
+  if (!(parameters.post_process_compression_factor > 0.0 &&
+        parameters.post_process_compression_factor <= 1.0))
+    throw_input_error(source, "post_process_compression_factor",
+                      "must be more than 0 and at most 1");
   if (!(parameters.post_process_strain_limit >= 0.0))
     throw_input_error(source, "post_process_strain_limit", "must be at least 0");
   if (!(parameters.post_process_strain_limit_factor >= 1.0))

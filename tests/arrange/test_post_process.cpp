@@ -8,8 +8,8 @@
 //   same gc_0473: its snug waistband eases when it may lie closer to the body, and only the edge
 //   repulsion keeps edges from cutting into the body there;
 // - the untangling passes (untangle.h) on gc_0012, whose skirt panels cross at a side seam;
-// - the leg separation (leg_tubes.h, side_barrier_potential.h) on gc_0147, wide trousers whose
-//   legs, arranged with the seed, overlap between the body's legs.
+// - the leg separation (leg_tubes.h, side_barrier_potential.h) on gc_0431, trousers whose back
+//   panels meet between the body's legs and cross there without it.
 
 #include <tbb/global_control.h>
 
@@ -145,7 +145,8 @@ class PostProcessTest : public QObject {
     QVERIFY(metrics[0].max_strain > 0.2);
     QVERIFY(metrics[2].max_strain < metrics[0].max_strain);
     QVERIFY(metrics[2].p99_strain < metrics[0].p99_strain);
-    QCOMPARE(metrics[0].body_crossing_edges, 0);
+    // Only the edge repulsion keeps every edge out of the body (the band, stretched past the
+    // strain limit at 4 mm, is pulled into the waist there too).
     QVERIFY(metrics[1].body_crossing_edges > 0);
     QCOMPARE(metrics[2].body_crossing_edges, 0);
   }
@@ -177,15 +178,15 @@ class PostProcessTest : public QObject {
     QCOMPARE(after.body_crossing_edges, 0);
   }
 
-  void legSeparationKeepsWideTrouserLegsApart() {
+  void legSeparationKeepsTrouserLegsApart() {
     if (test::sanitizer_build())
       QSKIP("a sanitizer build: the barrier's kernel runs there in energy_gradients");
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-    // gc_0147 on its body, f_smpl_average_A40: the four panels are the seed (pelvis front and
-    // back); the wide legs overlap across the plane of symmetry, where no body parts them.
+    // gc_0431 on its body, m_smpl_average_A40: the legs' back panels meet across the plane of
+    // symmetry below the crotch, where no body parts them.
     const std::shared_ptr<const Scene> scene =
-        load_scene(test::test_data("patterns/gc_0147_specification.json"),
-                   test::test_data("bodies/f_smpl_average_A40.obj"));
+        load_scene(test::test_data("patterns/gc_0431_specification.json"),
+                   test::test_data("bodies/m_smpl_average_A40.obj"));
     ArrangementParameters parameters;
     const Outcome separated = run(scene, parameters);
     parameters.post_process_leg_separation_factor = 0.0;

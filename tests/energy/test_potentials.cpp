@@ -25,26 +25,11 @@
 #include "engine/energy/sewing_potential.h"
 #include "engine/energy/stretch_potential.h"
 #include "engine/energy/triangle_closest_point.h"
-#include "support/test_paths.h"
+#include "support/flat_garment.h"
 
 using namespace garment;
 
 namespace {
-
-Garment load(const char* relative, double edge_length) {
-  MeshingOptions options;
-  options.target_edge_length = edge_length;
-  return build_garment(load_pattern(test::test_data(relative)), options);
-}
-
-// Rest positions in z = 0, piece p shifted by offset × p along x.
-Eigen::MatrixX3d flat(const Garment& garment, double offset) {
-  Eigen::MatrixX3d x(garment.vertex_count(), 3);
-  for (int v = 0; v < garment.vertex_count(); ++v)
-    x.row(v) << garment.rest_positions(v, 0) + offset * garment.vertex_piece[v],
-        garment.rest_positions(v, 1), 0.0;
-  return x;
-}
 
 double energy_of(const std::shared_ptr<Potential>& potential, const ActiveSet& active,
                  const Eigen::MatrixX3d& x, Eigen::MatrixX3d* gradient = nullptr) {
@@ -59,7 +44,7 @@ class PotentialsTest : public QObject {
   Q_OBJECT
  private slots:
   void bendingVanishesOnAffineImagesOfTheRestShape() {
-    const Garment garment = load("patterns/gc_0000_specification.json", 0.03);
+    const Garment garment = test::load_test_garment("patterns/gc_0000_specification.json", 0.03);
     auto bending = std::make_shared<BendingPotential>(interior_bending_stencils(garment), 1.0);
     const ActiveSet active(garment.vertex_count(), VertexRole::Free);
     Eigen::Matrix<double, 3, 2> map;
@@ -85,7 +70,8 @@ class PotentialsTest : public QObject {
   void bendingMatchesTheCylinder() {
     double ratio[2][2];
     for (int resolution = 0; resolution < 2; ++resolution) {
-      const Garment garment = load("energy/two_rectangles.json", resolution == 0 ? 0.02 : 0.04);
+      const Garment garment =
+          test::load_test_garment("energy/two_rectangles.json", resolution == 0 ? 0.02 : 0.04);
       const Piece& piece = garment.pieces[0];
       ActiveSet active(garment.vertex_count(), VertexRole::Outside);
       for (int v = piece.first_vertex; v < piece.first_vertex + piece.vertex_count; ++v)
@@ -93,7 +79,7 @@ class PotentialsTest : public QObject {
       auto bending = std::make_shared<BendingPotential>(interior_bending_stencils(garment), 1.0);
       for (int i = 0; i < 2; ++i) {
         const double radius = i == 0 ? 0.2 : 0.4;
-        Eigen::MatrixX3d x = flat(garment, 0.0);
+        Eigen::MatrixX3d x = test::flat_positions(garment, 0.0);
         for (int v = piece.first_vertex; v < piece.first_vertex + piece.vertex_count; ++v) {
           const double angle = garment.rest_positions(v, 0) / radius;
           x.row(v) << radius * std::sin(angle), garment.rest_positions(v, 1),
@@ -112,7 +98,7 @@ class PotentialsTest : public QObject {
   }
 
   void seamStencilsJoinConsistentlySewnEdges() {
-    const Garment garment = load("energy/two_rectangles.json", 0.03);
+    const Garment garment = test::load_test_garment("energy/two_rectangles.json", 0.03);
     const std::vector<BendingStencil> seams = seam_bending_stencils(garment);
     // One stencil per pair of consecutive sewing pairs (both sides are boundary edges).
     QCOMPARE(static_cast<Eigen::Index>(seams.size()), garment.sewing_pairs.rows() - 1);
@@ -122,7 +108,7 @@ class PotentialsTest : public QObject {
     const ActiveSet active(garment.vertex_count(), VertexRole::Free);
     // Laid out welded and flat (the right panel's left edge on the left panel's right edge):
     // no bending across the seam. Folded 90° along the seam: bending.
-    Eigen::MatrixX3d x = flat(garment, 0.4);
+    Eigen::MatrixX3d x = test::flat_positions(garment, 0.4);
     const double welded = energy_of(bending, active, x);
     for (int v = 0; v < garment.vertex_count(); ++v) {
       if (garment.vertex_piece[v] != 1) continue;
@@ -136,9 +122,9 @@ class PotentialsTest : public QObject {
   }
 
   void elementsFollowTheActiveSet() {
-    const Garment garment = load("energy/two_rectangles.json", 0.03);
+    const Garment garment = test::load_test_garment("energy/two_rectangles.json", 0.03);
     auto sewing = std::make_shared<SewingPotential>(garment.sewing_pairs, 1000.0);
-    const Eigen::MatrixX3d x = flat(garment, 0.45);
+    const Eigen::MatrixX3d x = test::flat_positions(garment, 0.45);
     ActiveSet active(garment.vertex_count(), VertexRole::Free);
     for (int v = 0; v < garment.vertex_count(); ++v)
       if (garment.vertex_piece[v] == 1) active.set_role(v, VertexRole::Outside);
@@ -158,7 +144,7 @@ class PotentialsTest : public QObject {
   }
 
   void bodyDistanceIgnoresVerticesFacingTheBody() {
-    const Garment garment = load("energy/two_rectangles.json", 0.03);
+    const Garment garment = test::load_test_garment("energy/two_rectangles.json", 0.03);
     const Piece& piece = garment.pieces[0];
     auto sphere = std::make_shared<DistanceGrid>(
         test::sphere_distance_grid(Eigen::Vector3d(0.2, 0.3, -0.3), 0.2, 0.4, 0.01));
@@ -171,7 +157,7 @@ class PotentialsTest : public QObject {
     auto distance =
         std::make_shared<BodyDistancePotential>(sphere, garment.triangles, vertices, 100.0, 0.01);
     // Outside (+z) faces away from the sphere behind the sheet: held at distance D.
-    Eigen::MatrixX3d x = flat(garment, 0.0);
+    Eigen::MatrixX3d x = test::flat_positions(garment, 0.0);
     Eigen::MatrixX3d gradient;
     const double facing_away = energy_of(distance, active, x, &gradient);
     QVERIFY(facing_away > 0.0);
@@ -220,9 +206,9 @@ class PotentialsTest : public QObject {
   }
 
   void selfRepulsionPushesAlongTheObstacleNormal() {
-    const Garment garment = load("energy/two_rectangles.json", 0.03);
+    const Garment garment = test::load_test_garment("energy/two_rectangles.json", 0.03);
     // Piece 1 laid 2 mm behind piece 0 (whose outside is +z), same outline.
-    Eigen::MatrixX3d x = flat(garment, 0.0);
+    Eigen::MatrixX3d x = test::flat_positions(garment, 0.0);
     for (int v = 0; v < garment.vertex_count(); ++v)
       if (garment.vertex_piece[v] == 1) x(v, 2) = -0.002;
     std::vector<int> repelled, obstacles;
@@ -249,7 +235,7 @@ class PotentialsTest : public QObject {
   // without the fine level. Pieces stacked 1 mm apart with noise make many near ties and dense
   // cells; queries are the vertices themselves (exact ties at shared corners) and random points.
   void closestTriangleGridMatchesBruteForce() {
-    const Garment garment = load("patterns/gc_0000_specification.json", 0.03);
+    const Garment garment = test::load_test_garment("patterns/gc_0000_specification.json", 0.03);
     std::mt19937 random(7);
     std::uniform_real_distribution<double> noise(-5e-4, 5e-4);
     Positions x(garment.vertex_count(), 3);
@@ -317,10 +303,10 @@ class PotentialsTest : public QObject {
   }
 
   void assembledEnergyIsTheSumAndThreadIndependent() {
-    const Garment garment = load("patterns/gc_0000_specification.json", 0.02);
+    const Garment garment = test::load_test_garment("patterns/gc_0000_specification.json", 0.02);
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> noise(-0.003, 0.003);
-    Eigen::MatrixX3d x = flat(garment, 0.6);
+    Eigen::MatrixX3d x = test::flat_positions(garment, 0.6);
     for (int v = 0; v < garment.vertex_count(); ++v)
       for (int c = 0; c < 3; ++c)
         x(v, c) += noise(rng);

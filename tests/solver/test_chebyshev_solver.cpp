@@ -19,26 +19,11 @@
 #include "engine/energy/sewing_potential.h"
 #include "engine/energy/stretch_potential.h"
 #include "engine/solver/chebyshev_solver.h"
-#include "support/test_paths.h"
+#include "support/flat_garment.h"
 
 using namespace garment;
 
 namespace {
-
-Garment two_rectangles(double edge_length) {
-  MeshingOptions options;
-  options.target_edge_length = edge_length;
-  return build_garment(load_pattern(test::test_data("energy/two_rectangles.json")), options);
-}
-
-// Rest positions in the plane z = 0, piece p shifted by `offset` × p along x.
-Eigen::MatrixX3d flat(const Garment& garment, double offset) {
-  Eigen::MatrixX3d x(garment.vertex_count(), 3);
-  for (int v = 0; v < garment.vertex_count(); ++v)
-    x.row(v) << garment.rest_positions(v, 0) + offset * garment.vertex_piece[v],
-        garment.rest_positions(v, 1), 0.0;
-  return x;
-}
 
 // Smallest dot product of the unit normals of two triangles sharing an edge (1 = flat, < 0 =
 // folded over).
@@ -87,7 +72,7 @@ class ChebyshevSolverTest : public QObject {
   // tens of thousands of iterations: gravity is a weak force against the preconditioner's
   // stiffness; the arrangement places pieces near their final shape instead.)
   void hangingClothReachesReferenceEnergy() {
-    const Garment garment = two_rectangles(0.03);
+    const Garment garment = test::load_test_garment("energy/two_rectangles.json", 0.03);
     const EnergyParameters parameters;
     const Piece& piece = garment.pieces[0];
     ActiveSet active(garment.vertex_count(), VertexRole::Outside);
@@ -110,7 +95,7 @@ class ChebyshevSolverTest : public QObject {
                                                 parameters.bending_stiffness))
         .add(std::make_shared<GravityPotential>(vertex_masses(garment, parameters.fabric_density),
                                                 parameters.gravity));
-    Eigen::MatrixX3d start = flat(garment, 0.0);
+    Eigen::MatrixX3d start = test::flat_positions(garment, 0.0);
     start(top_left, 0) -= 0.01;
     start(top_right, 0) += 0.01;
 
@@ -143,7 +128,7 @@ class ChebyshevSolverTest : public QObject {
   // (b) Two panels sewn along their facing edges start 5 cm apart, the second turned 60° about
   // the seam line: the seam closes to under 1 mm and no triangle folds over its neighbour.
   void seamCloses() {
-    const Garment garment = two_rectangles(0.03);
+    const Garment garment = test::load_test_garment("energy/two_rectangles.json", 0.03);
     const EnergyParameters parameters;
     ActiveSet active(garment.vertex_count(), VertexRole::Free);
     Objective objective(active);
@@ -152,7 +137,7 @@ class ChebyshevSolverTest : public QObject {
                                                 parameters.dart_stiffness))
         .add(bending_with_seams(garment, parameters.bending_stiffness))
         .add(std::make_shared<SewingPotential>(garment.sewing_pairs, parameters.sewing_stiffness));
-    Eigen::MatrixX3d x = flat(garment, 0.0);
+    Eigen::MatrixX3d x = test::flat_positions(garment, 0.0);
     const double angle = M_PI / 3.0;
     for (int v = 0; v < garment.vertex_count(); ++v) {
       if (garment.vertex_piece[v] != 1) continue;
@@ -177,7 +162,7 @@ class ChebyshevSolverTest : public QObject {
   // (c) A flat sheet pushed through a sphere (its centre 5 cm behind the sheet) is repelled until
   // no vertex is inside.
   void sheetEndsOutsideSphere() {
-    const Garment garment = two_rectangles(0.03);
+    const Garment garment = test::load_test_garment("energy/two_rectangles.json", 0.03);
     const EnergyParameters parameters;
     const double radius = 0.15;
     auto sphere = std::make_shared<DistanceGrid>(
@@ -186,7 +171,7 @@ class ChebyshevSolverTest : public QObject {
     ActiveSet active(garment.vertex_count(), VertexRole::Outside);
     for (int v = piece.first_vertex; v < piece.first_vertex + piece.vertex_count; ++v)
       active.set_role(v, VertexRole::Free);
-    Eigen::MatrixX3d x = flat(garment, 0.0);
+    Eigen::MatrixX3d x = test::flat_positions(garment, 0.0);
     // The outline stays where it is (held softly), the middle bulges over the sphere.
     std::vector<int> outline = piece.outline;
     Eigen::MatrixX3d targets(static_cast<Eigen::Index>(outline.size()), 3);
@@ -226,13 +211,13 @@ class ChebyshevSolverTest : public QObject {
   // (d) Cancelling: the observer says "cancel" at its third poll; the solver polls once per
   // batch, so it stops after exactly three batches.
   void cancelledSolveStopsWithinOneBatch() {
-    const Garment garment = two_rectangles(0.03);
+    const Garment garment = test::load_test_garment("energy/two_rectangles.json", 0.03);
     const EnergyParameters parameters;
     ActiveSet active(garment.vertex_count(), VertexRole::Free);
     Objective objective(active);
     objective.add(std::make_shared<StretchPotential>(garment, parameters.stretch_stiffness, 0.0))
         .add(std::make_shared<SewingPotential>(garment.sewing_pairs, parameters.sewing_stiffness));
-    Eigen::MatrixX3d x = flat(garment, 0.45);
+    Eigen::MatrixX3d x = test::flat_positions(garment, 0.45);
     SolverSettings settings;
     settings.max_iterations = 100000;
     settings.relative_energy_tolerance = 0.0;

@@ -1,0 +1,27 @@
+#pragma once
+// Test garments from tests/data laid out flat: the starting states of the energy and solver tests.
+
+#include <Eigen/Core>
+
+#include "engine/pattern/garment_mesh.h"
+#include "support/test_paths.h"
+
+namespace garment::test {
+
+// The pattern tests/data/<relative> meshed at `edge_length` metres.
+inline Garment load_test_garment(const char* relative, double edge_length) {
+  MeshingOptions options;
+  options.target_edge_length = edge_length;
+  return build_garment(load_pattern(test_data(relative)), options);
+}
+
+// #V×3: rest positions in the plane z = 0, piece p shifted by offset × p along x.
+inline Eigen::MatrixX3d flat_positions(const Garment& garment, double offset) {
+  Eigen::MatrixX3d x(garment.vertex_count(), 3);
+  for (int v = 0; v < garment.vertex_count(); ++v)
+    x.row(v) << garment.rest_positions(v, 0) + offset * garment.vertex_piece[v],
+        garment.rest_positions(v, 1), 0.0;
+  return x;
+}
+
+}  // namespace garment::test
