@@ -34,7 +34,8 @@ Eigen::Vector3d blend(const Eigen::Vector3d& from, const Eigen::Vector3d& to, do
 
 bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>& placed,
                      const RigidTransform& transform, const SeamDrapeSettings& settings,
-                     Eigen::MatrixX3d& positions, Eigen::MatrixX3d& outsides) {
+                     double rise_above_height, Eigen::MatrixX3d& positions,
+                     Eigen::MatrixX3d& outsides) {
   const Piece& info = garment.pieces[piece];
   // Where each seam vertex of the piece goes: the mean of its placed partners.
   const SeamPartners partners = seam_partners(garment, piece, placed, positions);
@@ -74,9 +75,12 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
     segment.next = starting_at[segment.second];
   }
 
-  // Hanging: the piece is cut to go down from the seam (rest frames are upright) and the seam is
-  // at the near end of its extent that way.
-  if (-mean_inward.y() < settings.hanging_above) return false;
+  // Hanging: the piece is cut to go down from the seam (rest frames are upright); rising: up from
+  // it (a hood or a standing collar on the neckline). Either way the seam is at the near end of
+  // its extent that way.
+  const bool hangs = -mean_inward.y() >= settings.hanging_above;
+  const bool rises = mean_inward.y() >= settings.rising_above;
+  if (!hangs && !rises) return false;
   double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
   for (int v = info.first_vertex; v < info.first_vertex + info.vertex_count; ++v) {
     const double reach = rest(v).dot(mean_inward);
@@ -89,13 +93,21 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
   seam_reach /= static_cast<double>(segments.size());
   if (!(highest > lowest) || (seam_reach - lowest) > settings.seam_extent * (highest - lowest))
     return false;
+  if (rises && highest - seam_reach < settings.rising_reach) return false;
+  if (rises) {
+    double seam_height = 0.0;
+    for (const SeamSegment& segment : segments)
+      seam_height +=
+          0.5 * (segment.start.y() + segment.end.y()) / static_cast<double>(segments.size());
+    if (seam_height <= rise_above_height) return false;
+  }
 
   // Sideways: the rigid fit sends the piece away from the seam nearly horizontally, neither down
   // it nor up.
   const auto rotated = [&](const Eigen::Vector2d& direction) -> Eigen::Vector3d {
     return transform.rotation * Eigen::Vector3d(direction.x(), direction.y(), 0.0);
   };
-  if (std::abs(rotated(mean_inward).y()) >= settings.sideways_below) return false;
+  if (hangs && std::abs(rotated(mean_inward).y()) >= settings.sideways_below) return false;
 
   // Round the body: a seam that runs more up than round is left to the rigid fit.
   Eigen::Vector3d seam_lower = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
@@ -109,7 +121,12 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
   if (seam_size.y() > settings.flat_seam_ratio * std::hypot(seam_size.x(), seam_size.z()))
     return false;
 
-  const Eigen::Vector3d world_down(0.0, -1.0, 0.0);
+  // Straight down for a hanging piece, up for a rising one.
+  const Eigen::Vector3d world_away(0.0, hangs ? -1.0 : 1.0, 0.0);
+  Eigen::Vector3d seam_centre = Eigen::Vector3d::Zero();
+  for (const SeamSegment& segment : segments)
+    seam_centre += 0.5 * (segment.start + segment.end) / static_cast<double>(segments.size());
+  double outwards = 0.0;
   // The flare of the cone whose development keeps lengths along the seam: a cone of half-angle θ
   // unrolls into a sector that turns sin θ times as much as its base circle, so a straight seam
   // round the body hangs straight down (a pencil or tiered skirt) and a circle skirt's arc would
@@ -134,7 +151,7 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
   const double sin_flare = std::sin(flare);
   for (SeamSegment& segment : segments) {
     const Eigen::Vector3d away = rotated(segment.inward);
-    Eigen::Vector3d vertical = world_down - world_down.dot(segment.along) * segment.along;
+    Eigen::Vector3d vertical = world_away - world_away.dot(segment.along) * segment.along;
     if (!(vertical.norm() > 1e-6)) vertical = away - away.dot(segment.along) * segment.along;
     vertical.normalize();
     // T × D is the hanging surface's normal, the piece's outside (its rest +z, the outline being
@@ -142,10 +159,15 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
     // flare away from the body, where the rigid fit sent it from here; if its outside would face
     // the body instead, the rigid fit stays.
     const Eigen::Vector3d out = segment.along.cross(vertical);
-    if (out.dot(away) < 0.0) return false;
+    if (hangs && out.dot(away) < 0.0) return false;
+    outwards += out.dot(0.5 * (segment.start + segment.end) - seam_centre);
     segment.down = cos_flare * vertical + sin_flare * out;
     segment.side = cos_flare * out - sin_flare * vertical;
   }
+
+  // A rising piece has no rigid fit to agree with: its outside must face away from the middle
+  // of the curve its seam follows round the neck.
+  if (rises && !(outwards > 0.0)) return false;
 
   for (int v = 0; v < info.vertex_count; ++v) {
     const Eigen::Vector2d u = rest(info.first_vertex + v);

@@ -29,6 +29,12 @@ struct SeamDrapeSettings {
   // The piece goes down from the seam in its upright pattern: the cosine of the angle between
   // straight down and the seam's mean inward normal is at least this.
   double hanging_above = 0.5;
+  // The piece goes up from the seam: the cosine between straight up and that normal is at least
+  // this (more than 1: no piece rises)...
+  double rising_above = 0.5;
+  // ... and reaches at least this far above it, m: a hood, round the head. A collar is shorter
+  // and is left to the rigid fit: a lapel stood up folds where it should turn down.
+  double rising_reach = 0.15;
   // The piece hangs from the seam when the seam lies in the first `seam_extent` of the piece's
   // extent away from it (its 2D inward direction).
   double seam_extent = 0.3;
@@ -45,11 +51,14 @@ struct SeamDrapeSettings {
 };
 
 // When `piece` hangs from its seam with the pieces placed[p] and `transform` (its rigid fit) lays
-// it sideways, writes its hanging start into its rows of `positions` and the outside direction of
-// each of its vertices into the same rows of `outsides` (#V×3), and returns true. Else leaves both
-// as they are and returns false.
+// it sideways, or rises from a seam whose mean height is above `rise_above_height` (m: the
+// armpits, so that pieces rise from the neckline only, not a bodice from a waistband), writes its
+// start into its rows of `positions` and the outside direction of each of its vertices into the
+// same rows of `outsides` (#V×3), and returns true. Else leaves both as they are and returns
+// false.
 bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>& placed,
                      const RigidTransform& transform, const SeamDrapeSettings& settings,
-                     Eigen::MatrixX3d& positions, Eigen::MatrixX3d& outsides);
+                     double rise_above_height, Eigen::MatrixX3d& positions,
+                     Eigen::MatrixX3d& outsides);
 
 }  // namespace garment

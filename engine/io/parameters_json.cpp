@@ -47,6 +47,8 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("align.first", p.align.first);
   visit("align.revisit", p.align.revisit);
   visit("seam_drape.hanging_above", p.seam_drape.hanging_above);
+  visit("seam_drape.rising_above", p.seam_drape.rising_above);
+  visit("seam_drape.rising_reach", p.seam_drape.rising_reach);
   visit("seam_drape.seam_extent", p.seam_drape.seam_extent);
   visit("seam_drape.sideways_below", p.seam_drape.sideways_below);
   visit("seam_drape.flat_seam_ratio", p.seam_drape.flat_seam_ratio);

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "engine/arrange/seam_drape.h"
@@ -30,6 +31,8 @@ using namespace garment;
 namespace {
 
 constexpr double kSeamHeight = 1.1;  // metres
+// The hanging tests' seams are below the armpits: nothing rises from them.
+constexpr double kNoRising = std::numeric_limits<double>::infinity();
 
 Garment circle_skirt_dress() {
   return build_garment(
@@ -128,6 +131,51 @@ struct FlatDisc {
       partners_at(garment, skirt, {"left_btorso", "right_btorso"}, transform, positions);
 };
 
+// What every start must keep: the piece's seam vertices on their placed partners (`partners`:
+// the positions before the start), its triangles facing the outsides written for their corners,
+// and no edge stretched past 20 %.
+struct StartShape {
+  double worst_gap = 0.0;  // m
+  int turned = 0;          // triangles
+  double worst_stretch = 0.0;
+  QString failure() const {
+    if (!(worst_gap < 0.005)) return QString("seam gap %1 m").arg(worst_gap);
+    if (turned != 0) return QString("%1 triangles turned over").arg(turned);
+    if (!(worst_stretch < 0.2)) return QString("stretch %1").arg(worst_stretch);
+    return {};
+  }
+};
+
+StartShape start_shape(const Garment& garment, int piece, const std::vector<bool>& placed,
+                       const Eigen::MatrixX3d& partners, const Eigen::MatrixX3d& positions,
+                       const Eigen::MatrixX3d& outsides) {
+  StartShape shape;
+  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k)
+    for (int side = 0; side < 2; ++side) {
+      const int own = garment.sewing_pairs(k, side), partner = garment.sewing_pairs(k, 1 - side);
+      if (garment.vertex_piece(own) == piece && placed[garment.vertex_piece(partner)])
+        shape.worst_gap =
+            std::max(shape.worst_gap, (positions.row(own) - partners.row(partner)).norm());
+    }
+  for (int t = 0; t < garment.triangle_count(); ++t) {
+    if (garment.triangle_piece(t) != piece) continue;
+    const Eigen::Vector3i corners = garment.triangles.row(t);
+    const Eigen::Vector3d a = positions.row(corners[0]), b = positions.row(corners[1]),
+                          c = positions.row(corners[2]);
+    const Eigen::Vector3d outside =
+        outsides.row(corners[0]) + outsides.row(corners[1]) + outsides.row(corners[2]);
+    shape.turned += (b - a).cross(c - a).dot(outside) <= 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const int from = corners[k], to = corners[(k + 1) % 3];
+      const double rest =
+          (garment.rest_positions.row(from) - garment.rest_positions.row(to)).norm();
+      shape.worst_stretch = std::max(shape.worst_stretch,
+                                     (positions.row(from) - positions.row(to)).norm() / rest - 1.0);
+    }
+  }
+  return shape;
+}
+
 // Runs drape_from_seam on `piece` with the placed partners in `positions` and checks the hanging
 // start against `flare` (θ); returns what failed, or nothing.
 QString check_hanging(const Garment& garment, int piece, const std::vector<bool>& placed,
@@ -136,17 +184,10 @@ QString check_hanging(const Garment& garment, int piece, const std::vector<bool>
   const Piece& info = garment.pieces[piece];
   const Eigen::MatrixX3d partners = positions;
   Eigen::MatrixX3d outsides = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
-  if (!drape_from_seam(garment, piece, placed, transform, settings, positions, outsides))
+  if (!drape_from_seam(garment, piece, placed, transform, settings, kNoRising, positions, outsides))
     return "not draped";
 
-  double worst_gap = 0.0;
-  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k)
-    for (int side = 0; side < 2; ++side) {
-      const int own = garment.sewing_pairs(k, side), partner = garment.sewing_pairs(k, 1 - side);
-      if (garment.vertex_piece(own) == piece && placed[garment.vertex_piece(partner)])
-        worst_gap = std::max(worst_gap, (positions.row(own) - partners.row(partner)).norm());
-    }
-
+  const StartShape shape = start_shape(garment, piece, placed, partners, positions, outsides);
   const std::vector<double> distances = distance_to_seam(garment, piece, placed);
   const double cos_flare = std::cos(flare);
   double highest = -1.0, worst_depth_error = 0.0, deepest = 0.0;
@@ -158,34 +199,62 @@ QString check_hanging(const Garment& garment, int piece, const std::vector<bool>
                                  std::abs(drop - cos_flare * distances[i]) / (0.01 + distances[i]));
   }
 
-  int turned = 0;
-  double worst_stretch = 0.0;
-  for (int t = 0; t < garment.triangle_count(); ++t) {
-    if (garment.triangle_piece(t) != piece) continue;
-    const Eigen::Vector3i corners = garment.triangles.row(t);
-    const Eigen::Vector3d a = positions.row(corners[0]), b = positions.row(corners[1]),
-                          c = positions.row(corners[2]);
-    const Eigen::Vector3d outside =
-        outsides.row(corners[0]) + outsides.row(corners[1]) + outsides.row(corners[2]);
-    turned += (b - a).cross(c - a).dot(outside) <= 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const int from = corners[k], to = corners[(k + 1) % 3];
-      const double rest =
-          (garment.rest_positions.row(from) - garment.rest_positions.row(to)).norm();
-      worst_stretch =
-          std::max(worst_stretch, (positions.row(from) - positions.row(to)).norm() / rest - 1.0);
-    }
-  }
   qDebug("seam gap %.2f mm, depth error %.3f, deepest %.3f m, stretch %.3f, turned %d",
-         1000 * worst_gap, worst_depth_error, deepest, worst_stretch, turned);
-  if (!(worst_gap < 0.005)) return QString("seam gap %1 m").arg(worst_gap);
+         1000 * shape.worst_gap, worst_depth_error, deepest, shape.worst_stretch, shape.turned);
   if (!(highest < 0.001)) return QString("%1 m above the seam").arg(highest);
   if (!(deepest > 0.25 * cos_flare)) return QString("hangs only %1 m").arg(deepest);
   if (!(worst_depth_error < 0.1)) return QString("depth off by %1").arg(worst_depth_error);
-  if (turned != 0) return QString("%1 triangles turned over").arg(turned);
-  if (!(worst_stretch < 0.2)) return QString("stretch %1").arg(worst_stretch);
-  return {};
+  return shape.failure();
 }
+
+// A right hood with the bodice's neckline laid on the right half of a ring round the neck, 1.45 m
+// up, as long as the hood's seam (its partners are sewn to it at equal spacing): each seam
+// vertex's partner at the angle its arc length along the seam gives, from the back (−z) round the
+// body's right (−x) to the front.
+struct HoodOnNeckline {
+  static constexpr double kNeckHeight = 1.45;
+  Garment garment;
+  int hood = piece_named(garment, "right_hood");
+  std::vector<bool> placed;
+  Eigen::MatrixX3d positions = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
+
+  explicit HoodOnNeckline(const char* pattern)
+      : garment(build_garment(load_pattern(test::test_data(pattern)))) {
+    placed.assign(garment.pieces.size(), false);
+    placed[piece_named(garment, "right_ftorso")] = placed[piece_named(garment, "right_btorso")] =
+        true;
+    // A seam vertex at a corner between two seams has a partner on each.
+    std::vector<std::vector<int>> partners_of(garment.vertex_count());
+    for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k)
+      for (int side = 0; side < 2; ++side) {
+        const int own = garment.sewing_pairs(k, side), partner = garment.sewing_pairs(k, 1 - side);
+        if (garment.vertex_piece(own) == hood && placed[garment.vertex_piece(partner)])
+          partners_of[own].push_back(partner);
+      }
+    const auto sewn = [&](int v) { return !partners_of[v].empty(); };
+    // The seam: the outline's run of sewn vertices, in outline order (it may wrap past the
+    // outline's first vertex).
+    const std::vector<int>& outline = garment.pieces[hood].outline;
+    const std::size_t n = outline.size();
+    std::size_t first = 0;
+    while (first < n && !(sewn(outline[first]) && !sewn(outline[(first + n - 1) % n])))
+      ++first;
+    std::vector<int> seam;
+    for (std::size_t k = first; sewn(outline[k % n]) && seam.size() < n; ++k)
+      seam.push_back(outline[k % n]);
+    std::vector<double> along{0.0};
+    for (std::size_t k = 1; k < seam.size(); ++k)
+      along.push_back(
+          along.back() +
+          (garment.rest_positions.row(seam[k]) - garment.rest_positions.row(seam[k - 1])).norm());
+    const double radius = along.back() / std::numbers::pi;
+    for (std::size_t k = 0; k < seam.size(); ++k) {
+      const double angle = std::numbers::pi * along[k] / along.back();
+      for (int partner : partners_of[seam[k]])
+        positions.row(partner) << -radius * std::sin(angle), kNeckHeight, -radius * std::cos(angle);
+    }
+  }
+};
 
 }  // namespace
 
@@ -309,10 +378,58 @@ class SeamDrapeTest : public QObject {
       Eigen::MatrixX3d outsides = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
       SeamDrapeSettings settings;
       settings.sideways_below = test.sideways_below;
-      QVERIFY2(
-          !drape_from_seam(garment, test.piece, placed, transform, settings, positions, outsides),
-          test.what);
+      QVERIFY2(!drape_from_seam(garment, test.piece, placed, transform, settings, kNoRising,
+                                positions, outsides),
+               test.what);
       QVERIFY2(positions == before && outsides.isZero(), test.what);
+    }
+  }
+
+  // A hood goes up from the neckline, round the head: gc_0156's, rising from its seam (above the
+  // armpits), stands up along the neck, the seam on its partners, its outside away from the neck's
+  // axis and no triangle turned. (Its edges may stretch in the fans beyond the seam's corners:
+  // the arrangement's solve evens them out.) Below `rise_above_height`, or shorter than the
+  // rising reach (a collar), it is left alone.
+  void hoodRisesFromTheNeckline() {
+    const HoodOnNeckline scene("patterns/rising_hood/gc_0156_specification.json");
+    QVERIFY(scene.hood >= 0);
+    const Garment& garment = scene.garment;
+    const Piece& info = garment.pieces[scene.hood];
+    const RigidTransform identity;
+    Eigen::MatrixX3d positions = scene.positions;
+    Eigen::MatrixX3d outsides = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
+    QVERIFY(drape_from_seam(garment, scene.hood, scene.placed, identity, SeamDrapeSettings{},
+                            HoodOnNeckline::kNeckHeight - 0.2, positions, outsides));
+    const StartShape shape =
+        start_shape(garment, scene.hood, scene.placed, scene.positions, positions, outsides);
+    QVERIFY(shape.worst_gap < 0.005);
+    QCOMPARE(shape.turned, 0);
+    double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+    int facing_in = 0;
+    for (int v = info.first_vertex; v < info.first_vertex + info.vertex_count; ++v) {
+      lowest = std::min(lowest, positions(v, 1));
+      highest = std::max(highest, positions(v, 1));
+      const Eigen::Vector3d radial(positions(v, 0), 0.0, positions(v, 2));
+      facing_in += outsides.row(v).dot(radial) <= 0.0;
+    }
+    qInfo(
+        "hood from %.3f to %.3f m, seam at %.2f m; %d outsides facing the neck; seam gap %.2f mm, "
+        "stretch %.3f",
+        lowest, highest, HoodOnNeckline::kNeckHeight, facing_in, 1000.0 * shape.worst_gap,
+        shape.worst_stretch);
+    QVERIFY(lowest > HoodOnNeckline::kNeckHeight - 0.01);
+    QVERIFY(highest > HoodOnNeckline::kNeckHeight + 0.3);
+    QCOMPARE(facing_in, 0);
+
+    for (const auto& [height, reach] : {std::pair{HoodOnNeckline::kNeckHeight + 0.01, 0.15},
+                                        std::pair{HoodOnNeckline::kNeckHeight - 0.2, 0.6}}) {
+      SeamDrapeSettings settings;
+      settings.rising_reach = reach;
+      Eigen::MatrixX3d untouched = scene.positions;
+      outsides.setZero();
+      QVERIFY(!drape_from_seam(garment, scene.hood, scene.placed, identity, settings, height,
+                               untouched, outsides));
+      QVERIFY(untouched == scene.positions && outsides.isZero());
     }
   }
 };
