@@ -27,15 +27,16 @@ inline DistanceGrid capsule_grid() {
   grid.origin = a.cwiseMin(b) - reach;
   const Eigen::Vector3d upper = a.cwiseMax(b) + reach;
   grid.size = ((upper - grid.origin) / grid.spacing).array().ceil().cast<int>() + 1;
-  grid.values.resize(static_cast<std::size_t>(grid.size.prod()));
+  std::vector<float> values(static_cast<std::size_t>(grid.size.prod()));
   for (int k = 0; k < grid.size.z(); ++k)
     for (int j = 0; j < grid.size.y(); ++j)
       for (int i = 0; i < grid.size.x(); ++i) {
         const Eigen::Vector3d p = grid.origin + grid.spacing * Eigen::Vector3d(i, j, k);
         const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-        grid.values[(static_cast<std::size_t>(k) * grid.size.y() + j) * grid.size.x() + i] =
+        values[(static_cast<std::size_t>(k) * grid.size.y() + j) * grid.size.x() + i] =
             static_cast<float>((p - (a + t * (b - a))).norm() - kBodyRadius);
       }
+  grid.values = SharedArray<float>(std::move(values));
   return grid;
 }
 

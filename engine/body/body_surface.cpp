@@ -142,7 +142,7 @@ BodySurface::BodySurface(const BodyMesh& body, const Eigen::Vector3d& origin, do
                         vertex_buried[v] = winding_number(p) >= 1;
                       }
                     });
-  lists_.triangle_outside.resize(triangles_.size());
+  std::vector<std::uint8_t> triangle_outside(triangles_.size());
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, triangle_count),
                     [&](const tbb::blocked_range<Eigen::Index>& r) {
                       for (Eigen::Index t = r.begin(); t != r.end(); ++t) {
@@ -153,9 +153,10 @@ BodySurface::BodySurface(const BodyMesh& body, const Eigen::Vector3d& origin, do
                         for (int k = 0; k < 3; ++k)
                           if (static_cast<bool>(vertex_buried[tri.vertex[k]]) != buried)
                             tri.outside = 2;
-                        lists_.triangle_outside[t] = tri.outside;
+                        triangle_outside[t] = tri.outside;
                       }
                     });
+  lists_.triangle_outside = SharedArray<std::uint8_t>(std::move(triangle_outside));
 }
 
 bool BodySurface::row_crossing(int triangle, double y, double z, double& x, int& direction) const {
@@ -276,7 +277,7 @@ CellTriangleLists build_cell_triangle_lists(const BodyMesh& body, const Eigen::V
   CellTriangleLists lists;
   lists.cells = cells;
   lists.blocks = (cells + Eigen::Vector3i::Constant(kBlock - 1)) / kBlock;
-  lists.block_of.assign(static_cast<std::size_t>(lists.blocks.prod()), -1);
+  std::vector<std::int32_t> block_of(static_cast<std::size_t>(lists.blocks.prod()), -1);
   const auto block_and_slot = [&](std::uint64_t cell) {
     const int i = static_cast<int>(cell % cells.x());
     const int j = static_cast<int>((cell / cells.x()) % cells.y());
@@ -294,8 +295,8 @@ CellTriangleLists build_cell_triangle_lists(const BodyMesh& body, const Eigen::V
   std::vector<std::size_t> block_first;
   for (std::size_t l = 0; l < listed.size(); ++l) {
     const std::size_t block = block_and_slot(listed[l].cell).first;
-    if (lists.block_of[block] < 0) {
-      lists.block_of[block] = static_cast<std::int32_t>(block_first.size());
+    if (block_of[block] < 0) {
+      block_of[block] = static_cast<std::int32_t>(block_first.size());
       block_first.push_back(l);
     }
   }
@@ -472,19 +473,24 @@ CellTriangleLists build_cell_triangle_lists(const BodyMesh& body, const Eigen::V
   std::size_t total = 0;
   for (const BlockLists& block : blocks)
     total += block.entries.size();
-  lists.entries.reserve(total);
-  lists.starts.reserve(stored * kBlockCells + 1);
+  std::vector<CellTriangleLists::Entry> entries;
+  std::vector<std::uint32_t> starts;
+  entries.reserve(total);
+  starts.reserve(stored * kBlockCells + 1);
   // Entries were appended in the order of the sorted cells, which is slot order.
   for (BlockLists& block : blocks) {
-    std::uint32_t position = static_cast<std::uint32_t>(lists.entries.size());
+    std::uint32_t position = static_cast<std::uint32_t>(entries.size());
     for (int slot = 0; slot < kBlockCells; ++slot) {
-      lists.starts.push_back(position);
+      starts.push_back(position);
       position += block.count[slot];
     }
-    lists.entries.insert(lists.entries.end(), block.entries.begin(), block.entries.end());
+    entries.insert(entries.end(), block.entries.begin(), block.entries.end());
     std::vector<CellTriangleLists::Entry>().swap(block.entries);
   }
-  lists.starts.push_back(static_cast<std::uint32_t>(lists.entries.size()));
+  starts.push_back(static_cast<std::uint32_t>(entries.size()));
+  lists.block_of = SharedArray<std::int32_t>(std::move(block_of));
+  lists.starts = SharedArray<std::uint32_t>(std::move(starts));
+  lists.entries = SharedArray<CellTriangleLists::Entry>(std::move(entries));
   return lists;
 }
 

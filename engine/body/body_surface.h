@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "engine/body/body_mesh.h"
+#include "engine/core/shared_array.h"
 
 namespace garment {
 
@@ -34,14 +35,14 @@ struct CellTriangleLists {
   };
   Eigen::Vector3i cells = Eigen::Vector3i::Zero();   // cells per axis (grid samples − 1)
   Eigen::Vector3i blocks = Eigen::Vector3i::Zero();  // blocks per axis
-  std::vector<std::int32_t> block_of;  // blocks.prod(): the stored block's number, or −1
+  SharedArray<std::int32_t> block_of;  // blocks.prod(): the stored block's number, or −1
   // 512 per stored block (cells x fastest) then one end: cell c of stored block b lists
   // entries[starts[512 b + c], starts[512 b + c + 1]); an empty list means "not listed".
-  std::vector<std::uint32_t> starts;
-  std::vector<Entry> entries;  // each list sorted by distance
+  SharedArray<std::uint32_t> starts;
+  SharedArray<Entry> entries;  // each list sorted by distance
   // Per triangle, the winding number just outside it (see BodySurface): computed by the surface
   // when empty, kept here so that the disk cache carries it.
-  std::vector<std::uint8_t> triangle_outside;
+  SharedArray<std::uint8_t> triangle_outside;
 
   bool empty() const { return entries.empty(); }
 };

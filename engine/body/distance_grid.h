@@ -10,7 +10,8 @@
 
 #include <Eigen/Core>
 #include <memory>
-#include <vector>
+
+#include "engine/core/shared_array.h"
 
 namespace garment {
 
@@ -20,7 +21,7 @@ struct DistanceGrid {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // position of sample (0,0,0), metres
   double spacing = 0.01;                             // metres between samples
   Eigen::Vector3i size = Eigen::Vector3i::Zero();    // samples per axis
-  std::vector<float> values;                   // size.prod() samples, x fastest, then y, then z
+  SharedArray<float> values;                   // size.prod() samples, x fastest, then y, then z
   std::shared_ptr<const BodySurface> surface;  // null: interpolation everywhere
 
   bool empty() const { return values.empty(); }

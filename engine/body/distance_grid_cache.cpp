@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <string_view>
 
 #include "engine/core/atomic_file.h"
+#include "engine/core/mapped_file.h"
 
 namespace garment {
 namespace {
@@ -52,6 +52,8 @@ struct Header {
   std::uint64_t block_count, start_count, entry_count, outside_count;
   std::uint64_t checksum;  // of the samples and the lists
 };
+// The arrays follow the header back to back; none has elements aligned to more than 4 bytes.
+static_assert(sizeof(Header) % 4 == 0 && alignof(CellTriangleLists::Entry) <= 4);
 
 std::uint64_t checksum_of(const DistanceGrid& grid, const CellTriangleLists& lists,
                           std::uint64_t key) {
@@ -63,15 +65,17 @@ std::uint64_t checksum_of(const DistanceGrid& grid, const CellTriangleLists& lis
   return hash_bytes(lists.triangle_outside.data(), lists.triangle_outside.size(), hash);
 }
 
+// `count` elements of the mapping from `offset` on, advancing it.
 template <typename T>
-bool read_array(std::istream& in, std::vector<T>& array, std::uint64_t count) {
-  array.resize(count);
-  return static_cast<bool>(in.read(reinterpret_cast<char*>(array.data()),
-                                   static_cast<std::streamsize>(count * sizeof(T))));
+SharedArray<T> view_array(const std::shared_ptr<const MappedFile>& mapping, std::size_t& offset,
+                          std::uint64_t count) {
+  const auto* first = reinterpret_cast<const T*>(mapping->data() + offset);
+  offset += count * sizeof(T);
+  return SharedArray<T>(mapping, first, count);
 }
 
 template <typename T>
-void write_array(std::ostream& out, const std::vector<T>& array) {
+void write_array(std::ostream& out, const SharedArray<T>& array) {
   out.write(reinterpret_cast<const char*>(array.data()),
             static_cast<std::streamsize>(array.size() * sizeof(T)));
 }
@@ -94,10 +98,10 @@ std::string distance_grid_cache_name(std::uint64_t key) {
 
 std::optional<CachedDistanceGrid> read_distance_grid_cache(const std::filesystem::path& file,
                                                            std::uint64_t key) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return std::nullopt;
+  const std::shared_ptr<const MappedFile> mapping = MappedFile::open(file);
+  if (!mapping || mapping->size() < sizeof(Header)) return std::nullopt;
   Header header;
-  if (!in.read(reinterpret_cast<char*>(&header), sizeof header)) return std::nullopt;
+  std::memcpy(&header, mapping->data(), sizeof header);
   if (header.magic != kMagic || header.version != kFormatVersion || header.key != key)
     return std::nullopt;
   CachedDistanceGrid cached;
@@ -120,19 +124,18 @@ std::optional<CachedDistanceGrid> read_distance_grid_cache(const std::filesystem
       header.block_count != static_cast<std::uint64_t>(lists.blocks.prod()) ||
       header.start_count % 512 != 1)
     return std::nullopt;
-  std::error_code error;
-  const std::uintmax_t file_size = std::filesystem::file_size(file, error);
-  if (error || file_size != sizeof header + count * sizeof(float) +
-                                header.block_count * sizeof(std::int32_t) +
-                                header.start_count * sizeof(std::uint32_t) +
-                                header.entry_count * sizeof(CellTriangleLists::Entry) +
-                                header.outside_count)
+  if (mapping->size() !=
+      sizeof header + count * sizeof(float) + header.block_count * sizeof(std::int32_t) +
+          header.start_count * sizeof(std::uint32_t) +
+          header.entry_count * sizeof(CellTriangleLists::Entry) + header.outside_count)
     return std::nullopt;
-  if (!read_array(in, grid.values, count) || !read_array(in, lists.block_of, header.block_count) ||
-      !read_array(in, lists.starts, header.start_count) ||
-      !read_array(in, lists.entries, header.entry_count) ||
-      !read_array(in, lists.triangle_outside, header.outside_count))
-    return std::nullopt;
+  // Every array starts on a multiple of 4 bytes, so the views are aligned (see Header).
+  std::size_t offset = sizeof header;
+  grid.values = view_array<float>(mapping, offset, count);
+  lists.block_of = view_array<std::int32_t>(mapping, offset, header.block_count);
+  lists.starts = view_array<std::uint32_t>(mapping, offset, header.start_count);
+  lists.entries = view_array<CellTriangleLists::Entry>(mapping, offset, header.entry_count);
+  lists.triangle_outside = view_array<std::uint8_t>(mapping, offset, header.outside_count);
   if (checksum_of(grid, lists, key) != header.checksum) return std::nullopt;
   const std::int64_t stored = static_cast<std::int64_t>(header.start_count / 512);
   for (const std::int32_t block : lists.block_of)

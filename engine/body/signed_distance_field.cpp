@@ -311,7 +311,7 @@ DistanceGrid compute_signed_distance_grid(const BodyMesh& body, double spacing, 
 
   const std::vector<std::uint8_t> inside = inside_samples(full, body);
 
-  grid.values.resize(full.count());
+  std::vector<float> values(full.count());
   tbb::parallel_for(tbb::blocked_range<int>(0, full.nz), [&](const tbb::blocked_range<int>& r) {
     for (int k = r.begin(); k != r.end(); ++k)
       for (int j = 0; j < full.ny; ++j)
@@ -343,9 +343,10 @@ DistanceGrid compute_signed_distance_grid(const BodyMesh& body, double spacing, 
               distance = distance_to(triangles[nearest], full.position(i, j, k));
             }
           }
-          grid.values[index] = static_cast<float>(inside[index] ? -distance : distance);
+          values[index] = static_cast<float>(inside[index] ? -distance : distance);
         }
   });
+  grid.values = SharedArray<float>(std::move(values));
 
   // The cells that answer exactly (body_surface.h) and what their lists hold.
   const Eigen::Vector3i cells = grid.size - Eigen::Vector3i::Ones();

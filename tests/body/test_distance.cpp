@@ -249,6 +249,20 @@ class BodyDistanceTest : public QObject {
     }
     QVERIFY(inside > 10 && covered > 10);
 
+    // A field read from the file views its mapping: it keeps its samples and lists when the file
+    // is deleted and written again, as another process rebuilding the cache would.
+    {
+      const SignedDistanceField mapped = signed_distance_field(body, options);
+      QVERIFY(mapped.from_cache);
+      std::filesystem::remove(built.cache_file);
+      QVERIFY(!signed_distance_field(body, options).from_cache);
+      QVERIFY(mapped.grid.values == built.grid.values);
+      QVERIFY(mapped.grid.surface->lists().entries.size() ==
+              built.grid.surface->lists().entries.size());
+      for (double z = -0.3; z <= 0.4; z += 0.0371)
+        QCOMPARE(mapped.grid.value({0.05, 0.15, z}), built.grid.value({0.05, 0.15, z}));
+    }
+
     // Another spacing is another file.
     SignedDistanceOptions finer = options;
     finer.spacing = 0.019;

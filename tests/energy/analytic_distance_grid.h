@@ -17,12 +17,13 @@ DistanceGrid sample_distance_grid(const Distance& distance, const Eigen::Vector3
   grid.origin = lower;
   grid.spacing = spacing;
   grid.size = ((upper - lower) / spacing).array().ceil().cast<int>() + 1;
-  grid.values.resize(static_cast<std::size_t>(grid.size.prod()));
+  std::vector<float> values(static_cast<std::size_t>(grid.size.prod()));
   for (int k = 0; k < grid.size.z(); ++k)
     for (int j = 0; j < grid.size.y(); ++j)
       for (int i = 0; i < grid.size.x(); ++i)
-        grid.values[(static_cast<std::size_t>(k) * grid.size.y() + j) * grid.size.x() + i] =
+        values[(static_cast<std::size_t>(k) * grid.size.y() + j) * grid.size.x() + i] =
             static_cast<float>(distance(lower + spacing * Eigen::Vector3d(i, j, k)));
+  grid.values = SharedArray<float>(std::move(values));
   return grid;
 }
 
