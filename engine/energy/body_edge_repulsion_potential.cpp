@@ -1,8 +1,15 @@
 #include "engine/energy/body_edge_repulsion_potential.h"
 
+#include <iterator>
 #include <stdexcept>
 
 namespace garment {
+namespace {
+
+constexpr double kSamples[] = {0.25, 0.5, 0.75};  // where along each edge φ is sampled
+constexpr std::size_t kSampleCount = std::size(kSamples);
+
+}  // namespace
 
 BodyEdgeRepulsionPotential::BodyEdgeRepulsionPotential(std::shared_ptr<const DistanceGrid> body,
                                                        Eigen::MatrixX2i edges, double stiffness,
@@ -20,7 +27,7 @@ void BodyEdgeRepulsionPotential::bind_elements(const ActiveSet& active) {
       bound_.emplace_back(i, j);
   }
   active_ = bound_;
-  cells_.assign(active_.size(), CellCache());
+  cells_.assign(kSampleCount * active_.size(), CellCache());
   refreshed_ = false;
 }
 
@@ -37,7 +44,7 @@ bool BodyEdgeRepulsionPotential::begin_evaluation(const Positions& x, int iterat
     if (body.value_and_gradient_below(midpoint, -kRefreshMargin, unused, cache) < reach)
       active_.push_back(edge);
   }
-  cells_.assign(active_.size(), CellCache());
+  cells_.assign(kSampleCount * active_.size(), CellCache());
   // The edges left out are beyond the buffer: the energy is the same function as before.
   return false;
 }
@@ -50,19 +57,23 @@ double BodyEdgeRepulsionPotential::accumulate(const Positions& x, int begin, int
   Eigen::Vector3d grad_phi;
   for (int e = begin; e < end; ++e) {
     const int i = active_[e].x(), j = active_[e].y();
-    const Eigen::Vector3d midpoint = 0.5 * (x.row(i) + x.row(j)).transpose();
-    // ½ k min(φ(m) − ε, 0)², ∂m/∂x_i = ∂m/∂x_j = ½ I
-    const double depth =
-        body.value_and_gradient_below(midpoint, buffer_, grad_phi, cells_[e]) - buffer_;
-    if (depth >= 0.0) continue;
-    energy += 0.5 * k * depth * depth;
-    const Eigen::Vector3d gradient = (0.5 * k * depth) * grad_phi;
-    out.gradient_row(i) += gradient;
-    out.gradient_row(j) += gradient;
-    if (out.wants_diagonal) {
-      const Eigen::Vector3d diagonal = (0.25 * k) * grad_phi.cwiseProduct(grad_phi);
-      out.diagonal_row(i) += diagonal;
-      out.diagonal_row(j) += diagonal;
+    for (std::size_t s = 0; s < kSampleCount; ++s) {
+      const double t = kSamples[s];
+      const Eigen::Vector3d point = ((1.0 - t) * x.row(i) + t * x.row(j)).transpose();
+      // ½ k min(φ(p) − ε, 0)², ∂p/∂x_i = (1 − t) I, ∂p/∂x_j = t I
+      const double depth =
+          body.value_and_gradient_below(point, buffer_, grad_phi, cells_[kSampleCount * e + s]) -
+          buffer_;
+      if (depth >= 0.0) continue;
+      energy += 0.5 * k * depth * depth;
+      const Eigen::Vector3d gradient = (k * depth) * grad_phi;
+      out.gradient_row(i) += (1.0 - t) * gradient;
+      out.gradient_row(j) += t * gradient;
+      if (out.wants_diagonal) {
+        const Eigen::Vector3d diagonal = k * grad_phi.cwiseProduct(grad_phi);
+        out.diagonal_row(i) += ((1.0 - t) * (1.0 - t)) * diagonal;
+        out.diagonal_row(j) += (t * t) * diagonal;
+      }
     }
   }
   return energy;
@@ -74,7 +85,7 @@ void BodyEdgeRepulsionPotential::mark_touched_vertices(std::vector<char>& touche
 }
 
 std::size_t BodyEdgeRepulsionPotential::element_bytes() const {
-  return active_.size() * (sizeof(Eigen::Vector2i) + sizeof(CellCache));
+  return active_.size() * (sizeof(Eigen::Vector2i) + kSampleCount * sizeof(CellCache));
 }
 
 }  // namespace garment

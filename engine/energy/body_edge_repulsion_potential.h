@@ -1,13 +1,15 @@
 #pragma once
-// Body repulsion of cloth edges: the potential of Eq. 11 (body_repulsion_potential.h) at each
-// edge's midpoint m = ½ (x_i + x_j),
-//   E = ½ k Σ_e min(φ(m_e) − ε, 0)²,
+// Body repulsion of cloth edges: the potential of Eq. 11 (body_repulsion_potential.h) at three
+// points of each edge, its quarter points p_t = (1 − t) x_i + t x_j, t ∈ {¼, ½, ¾},
+//   E = ½ k Σ_e Σ_t min(φ(p_t) − ε, 0)²,
 // so that an edge whose two ends stay outside the buffer cannot cut through a body part that is
 // curved more tightly than the edge is long (a 20 mm edge round a 3 cm arm sags 1.7 mm at its
-// middle). Vertex repulsion alone then needs a buffer that covers the sag; with the midpoints
-// held too, the post-process can let a snug band lie closer to the body.
-// Hessian diagonal ¼ k (∂φ/∂x_c)² for both ends, exact inside a cell of the trilinear field (as
-// for the vertex potential).
+// middle) or thinner than it (a 15 mm finger under a skirt's 20 mm edge misses the midpoint when
+// off the edge's middle: garments failed on edges crossing the hands with every vertex outside).
+// Vertex repulsion alone then needs a buffer that covers the sag; with the edges held too, the
+// post-process can let a snug band lie closer to the body.
+// Hessian diagonal (1 − t)² k (∂φ/∂x)² and t² k (∂φ/∂x)² for the two ends, exact inside a cell of
+// the trilinear field (as for the vertex potential).
 //
 // There are three times as many edges as vertices, and most are far from the body in a loose
 // garment: every `kRefreshInterval` evaluations the potential keeps only the edges whose midpoint
@@ -53,7 +55,7 @@ class BodyEdgeRepulsionPotential : public Potential {
   std::vector<Eigen::Vector2i> bound_;   // every edge that takes part
   std::vector<Eigen::Vector2i> active_;  // those near the body at the last refresh
   bool refreshed_ = false;
-  // Per element, written only by the thread that evaluates the element.
+  // Per element and sample point, written only by the thread that evaluates the element.
   mutable std::vector<CellCache> cells_;
 };
 
