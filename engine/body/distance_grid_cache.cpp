@@ -124,6 +124,11 @@ std::optional<CachedDistanceGrid> read_distance_grid_cache(const std::filesystem
       header.block_count != static_cast<std::uint64_t>(lists.blocks.prod()) ||
       header.start_count % 512 != 1)
     return std::nullopt;
+  // Counts no larger than the file keep the sum below from wrapping round to its size.
+  const std::uint64_t bytes = mapping->size();
+  if (count > bytes || header.block_count > bytes || header.start_count > bytes ||
+      header.entry_count > bytes || header.outside_count > bytes)
+    return std::nullopt;
   if (mapping->size() !=
       sizeof header + count * sizeof(float) + header.block_count * sizeof(std::int32_t) +
           header.start_count * sizeof(std::uint32_t) +
