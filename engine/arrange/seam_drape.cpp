@@ -93,14 +93,12 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
   seam_reach /= static_cast<double>(segments.size());
   if (!(highest > lowest) || (seam_reach - lowest) > settings.seam_extent * (highest - lowest))
     return false;
-  if (rises && highest - seam_reach < settings.rising_reach) return false;
-  if (rises) {
-    double seam_height = 0.0;
-    for (const SeamSegment& segment : segments)
-      seam_height +=
-          0.5 * (segment.start.y() + segment.end.y()) / static_cast<double>(segments.size());
-    if (seam_height <= rise_above_height) return false;
-  }
+  Eigen::Vector3d seam_centre = Eigen::Vector3d::Zero();
+  for (const SeamSegment& segment : segments)
+    seam_centre += 0.5 * (segment.start + segment.end) / static_cast<double>(segments.size());
+  if (rises &&
+      (highest - seam_reach < settings.rising_reach || seam_centre.y() <= rise_above_height))
+    return false;
 
   // Sideways: the rigid fit sends the piece away from the seam nearly horizontally, neither down
   // it nor up.
@@ -123,9 +121,6 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
 
   // Straight down for a hanging piece, up for a rising one.
   const Eigen::Vector3d world_away(0.0, hangs ? -1.0 : 1.0, 0.0);
-  Eigen::Vector3d seam_centre = Eigen::Vector3d::Zero();
-  for (const SeamSegment& segment : segments)
-    seam_centre += 0.5 * (segment.start + segment.end) / static_cast<double>(segments.size());
   double outwards = 0.0;
   // The flare of the cone whose development keeps lengths along the seam: a cone of half-angle θ
   // unrolls into a sector that turns sin θ times as much as its base circle, so a straight seam

@@ -38,6 +38,25 @@ double energy_of(const std::shared_ptr<Potential>& potential, const ActiveSet& a
   return objective.evaluate(x, gradient);
 }
 
+// One cloth edge from `from` to `to` (rows of x) near `body`: its two ends under vertex repulsion
+// and the edge under edge repulsion, both at 1e4 N/m with `buffer`.
+struct SingleEdge {
+  Eigen::MatrixX3d x;
+  Objective vertices, edges;
+};
+
+SingleEdge single_edge(const std::shared_ptr<DistanceGrid>& body, const Eigen::Vector3d& from,
+                       const Eigen::Vector3d& to, double buffer) {
+  SingleEdge result{Eigen::MatrixX3d(2, 3), Objective(ActiveSet(2, VertexRole::Free)),
+                    Objective(ActiveSet(2, VertexRole::Free))};
+  result.x << from.transpose(), to.transpose();
+  Eigen::MatrixX2i edge(1, 2);
+  edge << 0, 1;
+  result.vertices.add(std::make_shared<BodyRepulsionPotential>(body, 1e4, buffer));
+  result.edges.add(std::make_shared<BodyEdgeRepulsionPotential>(body, edge, 1e4, buffer));
+  return result;
+}
+
 }  // namespace
 
 class PotentialsTest : public QObject {
@@ -175,17 +194,10 @@ class PotentialsTest : public QObject {
     const Eigen::Vector3d centre(-0.0065, -0.001, 0.0);
     auto fingertip =
         std::make_shared<DistanceGrid>(test::sphere_distance_grid(centre, 0.0028, 0.02, 0.0005));
-    Eigen::MatrixX3d x(2, 3);
-    x << -0.01, 0.0, 0.0, 0.01, 0.0, 0.0;
-    Eigen::MatrixX2i edge(1, 2);
-    edge << 0, 1;
-    ActiveSet active(2, VertexRole::Free);
-    Objective vertices(active), edges(active);
-    vertices.add(std::make_shared<BodyRepulsionPotential>(fingertip, 1e4, 0.0005));
-    edges.add(std::make_shared<BodyEdgeRepulsionPotential>(fingertip, edge, 1e4, 0.0005));
+    SingleEdge single = single_edge(fingertip, {-0.01, 0.0, 0.0}, {0.01, 0.0, 0.0}, 0.0005);
     Eigen::MatrixX3d edge_gradient;
-    QCOMPARE(vertices.evaluate(x, nullptr, nullptr), 0.0);
-    QVERIFY(edges.evaluate(x, &edge_gradient, nullptr) > 0.0);
+    QCOMPARE(single.vertices.evaluate(single.x, nullptr, nullptr), 0.0);
+    QVERIFY(single.edges.evaluate(single.x, &edge_gradient, nullptr) > 0.0);
     // Pushed off the fingertip (+y), the end next to it three times as hard as the other.
     QVERIFY(edge_gradient(0, 1) < 0.0 && edge_gradient(1, 1) < 0.0);
     QVERIFY(std::abs(edge_gradient(0, 1) / edge_gradient(1, 1) - 3.0) < 1e-9);
@@ -198,19 +210,11 @@ class PotentialsTest : public QObject {
     const double radius = 0.1;
     auto sphere = std::make_shared<DistanceGrid>(
         test::sphere_distance_grid(Eigen::Vector3d::Zero(), radius, 0.05, 0.002));
-    const double half = 0.05, out = radius + 0.005;
-    Eigen::MatrixX3d x(2, 3);
-    x << -half, std::sqrt(out * out - half * half), 0.0, half, std::sqrt(out * out - half * half),
-        0.0;
-    Eigen::MatrixX2i edge(1, 2);
-    edge << 0, 1;
-    ActiveSet active(2, VertexRole::Free);
-    Objective vertices(active), edges(active);
-    vertices.add(std::make_shared<BodyRepulsionPotential>(sphere, 1e4, 0.004));
-    edges.add(std::make_shared<BodyEdgeRepulsionPotential>(sphere, edge, 1e4, 0.004));
+    const double half = 0.05, height = std::sqrt(std::pow(radius + 0.005, 2) - half * half);
+    SingleEdge single = single_edge(sphere, {-half, height, 0.0}, {half, height, 0.0}, 0.004);
     Eigen::MatrixX3d vertex_gradient, edge_gradient;
-    const double vertex_energy = vertices.evaluate(x, &vertex_gradient, nullptr);
-    const double edge_energy = edges.evaluate(x, &edge_gradient, nullptr);
+    const double vertex_energy = single.vertices.evaluate(single.x, &vertex_gradient, nullptr);
+    const double edge_energy = single.edges.evaluate(single.x, &edge_gradient, nullptr);
     qInfo("chord 10 cm, ends 5 mm out of a 10 cm sphere: vertex energy %.3g J, edge energy %.3g J",
           vertex_energy, edge_energy);
     QCOMPARE(vertex_energy, 0.0);
@@ -227,8 +231,8 @@ class PotentialsTest : public QObject {
     QVERIFY(std::abs(edge_gradient(0, 0) + edge_gradient(1, 0)) <=
             0.02 * std::abs(edge_gradient(0, 1)));
     // Moved 12 mm further out, the middle (4.3 mm out) clears the buffer.
-    x.col(1).array() += 0.012;
-    QCOMPARE(edges.evaluate(x, nullptr, nullptr), 0.0);
+    single.x.col(1).array() += 0.012;
+    QCOMPARE(single.edges.evaluate(single.x, nullptr, nullptr), 0.0);
   }
 
   void selfRepulsionPushesAlongTheObstacleNormal() {

@@ -88,11 +88,7 @@ class ChebyshevSolverTest : public QObject {
     active.set_role(top_left, VertexRole::Fixed);
     active.set_role(top_right, VertexRole::Fixed);
     Objective objective(active);
-    objective
-        .add(std::make_shared<StretchPotential>(garment, parameters.stretch_stiffness,
-                                                parameters.dart_stiffness))
-        .add(std::make_shared<BendingPotential>(interior_bending_stencils(garment),
-                                                parameters.bending_stiffness))
+    test::add_cloth_potentials(objective, garment, parameters)
         .add(std::make_shared<GravityPotential>(vertex_masses(garment, parameters.fabric_density),
                                                 parameters.gravity));
     Eigen::MatrixX3d start = test::flat_positions(garment, 0.0);
@@ -178,11 +174,7 @@ class ChebyshevSolverTest : public QObject {
     for (std::size_t i = 0; i < outline.size(); ++i)
       targets.row(static_cast<Eigen::Index>(i)) = x.row(outline[i]);
     Objective objective(active);
-    objective
-        .add(std::make_shared<StretchPotential>(garment, parameters.stretch_stiffness,
-                                                parameters.dart_stiffness))
-        .add(std::make_shared<BendingPotential>(interior_bending_stencils(garment),
-                                                parameters.bending_stiffness))
+    test::add_cloth_potentials(objective, garment, parameters)
         .add(std::make_shared<FixingPotential>(outline, targets, parameters.fixing_stiffness))
         .add(std::make_shared<BodyRepulsionPotential>(sphere, parameters.body_repulsion_stiffness,
                                                       parameters.repulsion_buffer));

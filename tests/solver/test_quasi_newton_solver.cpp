@@ -12,13 +12,11 @@
 #include <numeric>
 
 #include "energy/analytic_distance_grid.h"
-#include "engine/energy/bending_potential.h"
 #include "engine/energy/body_repulsion_potential.h"
 #include "engine/energy/energy_parameters.h"
 #include "engine/energy/fixing_potential.h"
 #include "engine/energy/gravity_potential.h"
 #include "engine/energy/sewing_potential.h"
-#include "engine/energy/stretch_potential.h"
 #include "engine/solver/quasi_newton_solver.h"
 #include "support/flat_garment.h"
 
@@ -50,12 +48,7 @@ struct Flap {
   Objective objective() const {
     const EnergyParameters parameters;
     Objective result(active);
-    result
-        .add(std::make_shared<StretchPotential>(garment, parameters.stretch_stiffness,
-                                                parameters.dart_stiffness,
-                                                parameters.stretch_compression_factor))
-        .add(std::make_shared<BendingPotential>(interior_bending_stencils(garment),
-                                                parameters.bending_stiffness))
+    test::add_cloth_potentials(result, garment, parameters, parameters.stretch_compression_factor)
         .add(std::make_shared<GravityPotential>(vertex_masses(garment, parameters.fabric_density),
                                                 parameters.gravity));
     return result;
@@ -188,11 +181,7 @@ class QuasiNewtonSolverTest : public QObject {
     for (std::size_t i = 0; i < piece.outline.size(); ++i)
       targets.row(static_cast<Eigen::Index>(i)) = x.row(piece.outline[i]);
     Objective objective(active);
-    objective
-        .add(std::make_shared<StretchPotential>(garment, parameters.stretch_stiffness,
-                                                parameters.dart_stiffness))
-        .add(std::make_shared<BendingPotential>(interior_bending_stencils(garment),
-                                                parameters.bending_stiffness))
+    test::add_cloth_potentials(objective, garment, parameters)
         .add(std::make_shared<FixingPotential>(piece.outline, targets, parameters.fixing_stiffness))
         .add(std::make_shared<BodyRepulsionPotential>(sphere, parameters.body_repulsion_stiffness,
                                                       parameters.repulsion_buffer));

@@ -1,8 +1,14 @@
 #pragma once
-// Test garments from tests/data laid out flat: the starting states of the energy and solver tests.
+// Test garments from tests/data laid out flat: the starting states of the energy and solver tests,
+// and the cloth's own energies over them.
 
 #include <Eigen/Core>
+#include <memory>
 
+#include "engine/energy/bending_potential.h"
+#include "engine/energy/energy_parameters.h"
+#include "engine/energy/objective.h"
+#include "engine/energy/stretch_potential.h"
 #include "engine/pattern/garment_mesh.h"
 #include "support/test_paths.h"
 
@@ -22,6 +28,18 @@ inline Eigen::MatrixX3d flat_positions(const Garment& garment, double offset) {
     x.row(v) << garment.rest_positions(v, 0) + offset * garment.vertex_piece[v],
         garment.rest_positions(v, 1), 0.0;
   return x;
+}
+
+// Adds the cloth's stretch (springs and darts, compressed springs at `compression_factor` of their
+// stiffness) and bending at the parameters' stiffnesses.
+inline Objective& add_cloth_potentials(Objective& objective, const Garment& garment,
+                                       const EnergyParameters& parameters,
+                                       double compression_factor = 1.0) {
+  return objective
+      .add(std::make_shared<StretchPotential>(garment, parameters.stretch_stiffness,
+                                              parameters.dart_stiffness, compression_factor))
+      .add(std::make_shared<BendingPotential>(interior_bending_stencils(garment),
+                                              parameters.bending_stiffness));
 }
 
 }  // namespace garment::test
