@@ -4,8 +4,8 @@
 // over), front and back pieces go to their two locations, a pair of identical panels that the
 // classifier puts on one side is split into front and back (when it gives the other side a real
 // chance, or cannot tell the two apart), a side found alone takes the piece sewn to it that is
-// most probably the other side, and without any seed class the rule picks the piece with the most
-// garment below its seams.
+// most probably the other side, names that say a side overrule the classifier's side, and without
+// any seed class the rule picks the piece with the most garment below its seams.
 
 #include <QtTest>
 
@@ -25,16 +25,21 @@ using garment::test::stitch;
 namespace {
 
 // Pieces 0 and 1: two identical skirt panels 50×60 sewn at both sides; piece 2: a band 100×5 sewn
-// on top of piece 0; piece 3: a flap 50×10 sewn below piece 1.
-const Garment& four_panels() {
-  static const Garment built = build_garment(parse_pattern(
-      "{\"pattern\": {\"panels\": {" + rectangle("one", 50, 60) + ", " + rectangle("two", 50, 60) +
+// on top of piece 0; piece 3: a flap 50×10 sewn below piece 1. Named as given.
+Garment four_panels_named(const std::string& first, const std::string& second) {
+  return build_garment(parse_pattern(
+      "{\"pattern\": {\"panels\": {" + rectangle(first, 50, 60) + ", " + rectangle(second, 50, 60) +
           ", " + rectangle("band", 100, 5) + ", " + rectangle("flap", 50, 10) +
-          "}, \"panel_order\": [\"one\", \"two\", \"band\", \"flap\"], \"stitches\": [" +
-          stitch("one", 1, "two", 3) + ", " + stitch("two", 1, "one", 3) + ", " +
-          stitch("one", 2, "band", 0) + ", " + stitch("two", 0, "flap", 2) +
-          "]}, \"properties\": {\"units_in_meter\": 100}}",
+          "}, \"panel_order\": [\"" + first + "\", \"" + second +
+          "\", \"band\", \"flap\"], \"stitches\": [" + stitch(first, 1, second, 3) + ", " +
+          stitch(second, 1, first, 3) + ", " + stitch(first, 2, "band", 0) + ", " +
+          stitch(second, 0, "flap", 2) + "]}, \"properties\": {\"units_in_meter\": 100}}",
       "seed_choice.json"));
+}
+
+// The four panels with names that say no side.
+const Garment& four_panels() {
+  static const Garment built = four_panels_named("one", "two");
   return built;
 }
 
@@ -220,6 +225,35 @@ class SeedChoiceTest : public QObject {
                                        {{SeedClass::BackChest, 0.05}},
                                        {}}));
     QCOMPARE(parts_of(plan), (Parts{{"chest_front", {0}}}));
+  }
+
+  // A pattern that names its sides is believed over the classifier's side: the Garment-Pattern-
+  // Generator jacket's back comes out of the classifier a sure front chest, its front a back chest.
+  void namedSidesOverruleTheClassifiersSides() {
+    const SeedPlan plan = choose_seed(
+        four_panels_named("back", "front"),
+        classification({{{SeedClass::FrontChest, 0.99}}, {{SeedClass::BackChest, 0.99}}, {}, {}}));
+    QCOMPARE(parts_of(plan), (Parts{{"chest_front", {1}}, {"chest_back", {0}}}));
+  }
+
+  // Names split identical panels the classifier cannot tell apart the way the pattern says, not
+  // by their order (indistinguishablePanelsOnOneSideAreSplit puts piece 1 in front).
+  void namesSplitIndistinguishablePanels() {
+    const SeedPlan plan = choose_seed(four_panels_named("skirt_front", "skirt_back"),
+                                      classification({{{kBackPelvis, 0.78}, {kFrontPelvis, 0.08}},
+                                                      {{kBackPelvis, 0.78}, {kFrontPelvis, 0.08}},
+                                                      {},
+                                                      {}}));
+    QCOMPARE(parts_of(plan), (Parts{{"pelvis_front", {0}}, {"pelvis_back", {1}}}));
+  }
+
+  // A side found alone takes the piece sewn to it that is named for the other side, even when the
+  // classifier gives that piece no chance of it (oneSidedChestWithoutAPlausiblePartnerStaysAlone).
+  void oneSidedPartTakesItsPartnerNamedForTheOtherSide() {
+    const SeedPlan plan = choose_seed(
+        four_panels_named("front", "back"),
+        classification({{{SeedClass::FrontChest, 0.8}}, {{kFrontPelvis, 0.5}}, {}, {}}));
+    QCOMPARE(parts_of(plan), (Parts{{"chest_front", {0}}, {"chest_back", {1}}}));
   }
 
   // Without seed classes: the piece with the most garment hanging below its seams, the band
