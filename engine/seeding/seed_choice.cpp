@@ -95,17 +95,25 @@ void complete_front_and_back(const PieceClassification& classification, GroupCla
   }
 }
 
-// The side the pieces of a group are named for: Front or Back when some of their names say that
-// side and none says the other (expected_region.h reads the names), else Any.
-FrontBack named_side(const Garment& garment, const std::vector<int>& group) {
-  bool front = false, back = false;
-  for (int piece : group) {
-    const FrontBack side = expected_region_from_name(garment.pieces[piece].name).front_back;
-    front = front || side == FrontBack::Front;
-    back = back || side == FrontBack::Back;
+// Where pieces are named for: front or back, left or right, each when some of the names say it and
+// none says the opposite (expected_region.h reads the names), else Any.
+ExpectedRegion named_region(const Garment& garment, const std::vector<int>& pieces) {
+  bool front = false, back = false, left = false, right = false;
+  for (int piece : pieces) {
+    const ExpectedRegion region = expected_region_from_name(garment.pieces[piece].name);
+    front = front || region.front_back == FrontBack::Front;
+    back = back || region.front_back == FrontBack::Back;
+    left = left || region.left_right == LeftRight::Left;
+    right = right || region.left_right == LeftRight::Right;
   }
-  if (front == back) return FrontBack::Any;
-  return front ? FrontBack::Front : FrontBack::Back;
+  ExpectedRegion named;
+  if (front != back) named.front_back = front ? FrontBack::Front : FrontBack::Back;
+  if (left != right) named.left_right = left ? LeftRight::Left : LeftRight::Right;
+  return named;
+}
+
+FrontBack named_side(const Garment& garment, const std::vector<int>& group) {
+  return named_region(garment, group).front_back;
 }
 
 // A pattern that names its pieces' sides is believed over the classifier's side, which keeps the
@@ -182,7 +190,11 @@ std::vector<int> ring_part(const Garment& garment, const PieceClassification& cl
 }
 
 // The front and back parts of a pair of classes (chest or pelvis), each at its location; empty
-// when the classifier finds neither side.
+// when the classifier finds neither side. A side in two parts not sewn to each other and named for
+// the body's left and right (a jacket's open front) is one part, laid out left to right as the
+// side is seen from outside: seeded alone, one half would be centred on the location and leave
+// the other to be laid flat beside the garment (Garment-Pattern-Generator jackets: 0 -> 1 clean
+// of 4; no GarmentCode design has such a part).
 std::vector<SeedPart> front_and_back_parts(const Garment& garment,
                                            const PieceClassification& classification,
                                            GroupClasses& classes, SeedClass front, SeedClass back,
@@ -195,10 +207,26 @@ std::vector<SeedPart> front_and_back_parts(const Garment& garment,
        {std::pair{front, front_location}, std::pair{back, back_location}}) {
     const std::vector<int> groups = groups_of_class(classification, classes, wanted);
     if (groups.empty()) continue;
-    parts.push_back(
-        {pieces_of(classification, connected_groups_of_class(garment, classification, classes,
-                                                             groups.front(), wanted)),
-         location});
+    const std::vector<int> part =
+        connected_groups_of_class(garment, classification, classes, groups.front(), wanted);
+    std::vector<int> pieces = pieces_of(classification, part);
+    const auto other = std::find_if(groups.begin(), groups.end(), [&](int group) {
+      return std::find(part.begin(), part.end(), group) == part.end();
+    });
+    if (other != groups.end()) {
+      std::vector<int> other_pieces =
+          pieces_of(classification,
+                    connected_groups_of_class(garment, classification, classes, *other, wanted));
+      const LeftRight side = named_region(garment, pieces).left_right,
+                      other_side = named_region(garment, other_pieces).left_right;
+      if (side != LeftRight::Any && other_side != LeftRight::Any && side != other_side) {
+        // Seen from the front, the body's right (−x) is on the left; seen from behind, its left.
+        const LeftRight first = wanted == front ? LeftRight::Right : LeftRight::Left;
+        if (side != first) std::swap(pieces, other_pieces);
+        pieces.insert(pieces.end(), other_pieces.begin(), other_pieces.end());
+      }
+    }
+    parts.push_back({pieces, location});
   }
   return parts;
 }

@@ -4,7 +4,8 @@
 // over), front and back pieces go to their two locations, a pair of identical panels that the
 // classifier puts on one side is split into front and back (when it gives the other side a real
 // chance, or cannot tell the two apart), a side found alone takes the piece sewn to it that is
-// most probably the other side, names that say a side overrule the classifier's side, and without
+// most probably the other side, names that say a side overrule the classifier's side, the halves
+// of an open front named left and right make one part, and without
 // any seed class the rule picks the piece with the most garment below its seams.
 
 #include <QtTest>
@@ -55,6 +56,19 @@ const Garment& banded_skirt() {
           stitch("band_one", 1, "band_two", 3) + ", " + stitch("band_two", 1, "band_one", 3) +
           "]}, \"properties\": {\"units_in_meter\": 100}}",
       "banded_skirt.json"));
+  return built;
+}
+
+// An open front: front halves 25×60 (pieces 0 "front_left", 1 "front_right") each sewn to a back
+// 50×60 (piece 2) at one side, not to each other.
+const Garment& open_front() {
+  static const Garment built = build_garment(parse_pattern(
+      "{\"pattern\": {\"panels\": {" + rectangle("front_left", 25, 60) + ", " +
+          rectangle("front_right", 25, 60) + ", " + rectangle("back", 50, 60) +
+          "}, \"panel_order\": [\"front_left\", \"front_right\", \"back\"], \"stitches\": [" +
+          stitch("front_left", 1, "back", 3) + ", " + stitch("back", 1, "front_right", 3) +
+          "]}, \"properties\": {\"units_in_meter\": 100}}",
+      "open_front.json"));
   return built;
 }
 
@@ -254,6 +268,17 @@ class SeedChoiceTest : public QObject {
         four_panels_named("front", "back"),
         classification({{{SeedClass::FrontChest, 0.8}}, {{kFrontPelvis, 0.5}}, {}, {}}));
     QCOMPARE(parts_of(plan), (Parts{{"chest_front", {0}}, {"chest_back", {1}}}));
+  }
+
+  // The two halves of an open front, not sewn to each other, are one front part, the body's
+  // right half (−x) first as the front plane is seen: seeded alone, one half would take the
+  // middle of the chest and leave the other to be laid flat beside the garment.
+  void openFrontHalvesAreOnePart() {
+    const SeedPlan plan =
+        choose_seed(open_front(), classification({{{SeedClass::FrontChest, 0.9}},
+                                                  {{SeedClass::FrontChest, 0.8}},
+                                                  {{SeedClass::BackChest, 0.9}}}));
+    QCOMPARE(parts_of(plan), (Parts{{"chest_front", {1, 0}}, {"chest_back", {2}}}));
   }
 
   // Without seed classes: the piece with the most garment hanging below its seams, the band
