@@ -112,8 +112,14 @@ ExpectedRegion named_region(const Garment& garment, const std::vector<int>& piec
   return named;
 }
 
-FrontBack named_side(const Garment& garment, const std::vector<int>& group) {
-  return named_region(garment, group).front_back;
+// The side each group's names say (Any when they say none), read once per seed choice.
+std::vector<FrontBack> named_sides(const Garment& garment,
+                                   const PieceClassification& classification) {
+  std::vector<FrontBack> sides;
+  sides.reserve(classification.groups.size());
+  for (const std::vector<int>& group : classification.groups)
+    sides.push_back(named_region(garment, group).front_back);
+  return sides;
 }
 
 // A pattern that names its pieces' sides is believed over the classifier's side, which keeps the
@@ -124,12 +130,11 @@ FrontBack named_side(const Garment& garment, const std::vector<int>& group) {
 // With the neighbour named for a missing side (complete_from_neighbours), this changes the seed of
 // 7 of the 500 GarmentCode designs, all failing before, 4 clean after; of the templates, 3 -> 5
 // clean.
-void follow_named_sides(const Garment& garment, const PieceClassification& classification,
-                        GroupClasses& classes, SeedClass front, SeedClass back) {
+void follow_named_sides(const std::vector<FrontBack>& sides, GroupClasses& classes, SeedClass front,
+                        SeedClass back) {
   for (int g = 0; g < static_cast<int>(classes.size()); ++g) {
     if (classes[g] != front && classes[g] != back) continue;
-    const FrontBack side = named_side(garment, classification.groups[g]);
-    if (side != FrontBack::Any) classes[g] = side == FrontBack::Front ? front : back;
+    if (sides[g] != FrontBack::Any) classes[g] = sides[g] == FrontBack::Front ? front : back;
   }
 }
 
@@ -142,16 +147,15 @@ void follow_named_sides(const Garment& garment, const PieceClassification& class
 constexpr double kNeighbourSideProbability = 0.1;
 
 void complete_from_neighbours(const Garment& garment, const PieceClassification& classification,
-                              GroupClasses& classes, SeedClass front, SeedClass back) {
+                              const std::vector<FrontBack>& sides, GroupClasses& classes,
+                              SeedClass front, SeedClass back) {
   for (const auto& [present, missing] : {std::pair{front, back}, std::pair{back, front}}) {
     const std::vector<int> groups = groups_of_class(classification, classes, present);
     if (groups.empty() || !groups_of_class(classification, classes, missing).empty()) continue;
     const std::vector<int> part =
         connected_groups_of_class(garment, classification, classes, groups.front(), present);
     const FrontBack missing_side = missing == front ? FrontBack::Front : FrontBack::Back;
-    const auto named_for_missing = [&](int group) {
-      return named_side(garment, classification.groups[group]) == missing_side;
-    };
+    const auto named_for_missing = [&](int group) { return sides[group] == missing_side; };
     // A neighbour named for the missing side first, then the classifier's ranking.
     const auto ranks_higher = [&](int a, int b) {
       if (named_for_missing(a) != named_for_missing(b)) return named_for_missing(a);
@@ -200,8 +204,9 @@ std::vector<SeedPart> front_and_back_parts(const Garment& garment,
                                            GroupClasses& classes, SeedClass front, SeedClass back,
                                            const char* front_location, const char* back_location) {
   complete_front_and_back(classification, classes, front, back);
-  follow_named_sides(garment, classification, classes, front, back);
-  complete_from_neighbours(garment, classification, classes, front, back);
+  const std::vector<FrontBack> sides = named_sides(garment, classification);
+  follow_named_sides(sides, classes, front, back);
+  complete_from_neighbours(garment, classification, sides, classes, front, back);
   std::vector<SeedPart> parts;
   for (const auto& [wanted, location] :
        {std::pair{front, front_location}, std::pair{back, back_location}}) {

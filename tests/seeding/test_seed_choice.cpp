@@ -5,8 +5,8 @@
 // classifier puts on one side is split into front and back (when it gives the other side a real
 // chance, or cannot tell the two apart), a side found alone takes the piece sewn to it that is
 // most probably the other side, names that say a side overrule the classifier's side, the halves
-// of an open front named left and right make one part, and without
-// any seed class the rule picks the piece with the most garment below its seams.
+// of an open front named left and right make one part, and without any seed class the rule picks
+// the piece with the most garment below its seams.
 
 #include <QtTest>
 
