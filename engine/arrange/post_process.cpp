@@ -147,7 +147,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   for (int v = 0; v < garment.vertex_count(); ++v)
     if (arranged[garment.vertex_piece(v)]) active.set_role(v, VertexRole::Free);
 
-  context.bending->set_stiffness(energy.bending_stiffness);
+  context.bending->set_stiffness(energy.bending_stiffness * parameters.post_process_bending_factor);
   context.sewing->set_stiffness(energy.sewing_stiffness * parameters.post_process_sewing_factor);
   context.body_repulsion->set_stiffness(energy.body_repulsion_stiffness *
                                         parameters.post_process_repulsion_factor);
