@@ -4,11 +4,11 @@
 //   the plain springs left over-stretched: tests/data/patterns/gc_0473 (a skirt with a two-part
 //   waistband) on its own body, m_smpl_average_A40, whose waist is wider than the body
 //   measurements the pattern was cut for;
-// - the body buffer and the repulsion of points along edges (body_edge_repulsion_potential.h), on
-// the
-//   same gc_0473: its snug waistband eases when it may lie closer to the body, and only the edge
-//   repulsion keeps edges from cutting into the body there;
+// - the body buffer and the repulsion of points along edges (body_edge_repulsion_potential.h),
+//   on the same gc_0473: its snug waistband eases when it may lie closer to the body, and only
+//   the edge repulsion keeps edges from cutting into the body there;
 // - the untangling passes (untangle.h) on gc_0012, whose skirt panels cross at a side seam;
+// - the post-process's stiffer bending on basic_tee__tee, whose sleeves fold without it;
 // - the leg separation (leg_tubes.h, side_barrier_potential.h) on gc_0431, trousers whose legs
 //   reach into each other's side between the body's legs without it.
 
@@ -180,6 +180,33 @@ class PostProcessTest : public QObject {
     // Pulled apart without tearing seams open or pushing cloth into the body.
     QVERIFY(after.max_seam_gap_m < 0.005);
     QCOMPARE(after.body_crossing_edges, 0);
+  }
+
+  void stifferBendingKeepsSqueezedSleevesFromFolding() {
+    if (test::sanitizer_build())
+      QSKIP("a sanitizer build: the bending kernel runs there in energy_gradients");
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    // basic_tee__tee (Garment-Pattern-Generator) on f_smpl_average_A40: with the arrangement's
+    // bending, its sleeves and back crease where gravity and the strain limit squeeze them.
+    const std::shared_ptr<const Scene> scene =
+        load_scene(test::test_data("patterns/basic_tee__tee.json"),
+                   test::test_data("bodies/f_smpl_average_A40.obj"));
+    ArrangementParameters parameters;
+    const Outcome stiff = run(scene, parameters);
+    parameters.post_process_bending_factor = 1.0;
+    const Outcome soft = run(scene, parameters);
+    QCOMPARE(stiff.arranged, soft.arranged);
+    const auto [creased, smooth] = measure_post_processed(*scene, soft, stiff);
+    qInfo(
+        "folds: %d at the arrangement's bending, %d at the post-process's; seam gap %.1f mm, %.1f "
+        "mm; max strain %.3f, %.3f",
+        creased.folds, smooth.folds, 1000.0 * creased.max_seam_gap_m,
+        1000.0 * smooth.max_seam_gap_m, creased.max_strain, smooth.max_strain);
+    QVERIFY(creased.folds > 0);
+    QCOMPARE(smooth.folds, 0);
+    // Stiffer cloth that still closes its seams and keeps to the strain bound.
+    QVERIFY(smooth.max_seam_gap_m < 0.005);
+    QVERIFY(smooth.max_strain < 0.2);
   }
 
   void legSeparationKeepsTrouserLegsApart() {
