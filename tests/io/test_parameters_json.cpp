@@ -95,6 +95,13 @@ class ParametersJsonTest : public QObject {
     QVERIFY(error_of(R"({"post_process_edge_repulsion_factor": 0})").isEmpty());
   }
 
+  void outOfRangeBendingFactorNamesTheKey() {
+    const QString zero = error_of(R"({"post_process_bending_factor": 0})");
+    QVERIFY2(zero.contains("post_process_bending_factor"), qPrintable(zero));
+    QVERIFY(!error_of(R"({"post_process_bending_factor": -2})").isEmpty());
+    QVERIFY(error_of(R"({"post_process_bending_factor": 0.5})").isEmpty());
+  }
+
   void reportedParametersReadBack() {
     ArrangementParameters changed;
     changed.energy.bending_stiffness = 0.004;
