@@ -140,22 +140,36 @@ void PieceAligner::place(int piece, const RigidTransform& transform,
 }
 
 void PieceAligner::lift_out_of_body(int piece, const Eigen::MatrixX3d& outsides,
-                                    const DistanceGrid& body, double clearance,
+                                    const DistanceGrid& body, double clearance, double taper,
                                     Eigen::MatrixX3d& positions) const {
   constexpr double kStep = 0.005, kReach = 1.0;  // metres
   const Piece& info = garment_.pieces[piece];
-  for (int v = info.first_vertex; v < info.first_vertex + info.vertex_count; ++v) {
-    const Eigen::Vector3d start = positions.row(v).transpose();
+  // How far each vertex has to travel along its outside direction to clear the body.
+  Eigen::VectorXd travel = Eigen::VectorXd::Zero(info.vertex_count);
+  std::vector<int> lifted;
+  for (int i = 0; i < info.vertex_count; ++i) {
+    const Eigen::Vector3d start = positions.row(info.first_vertex + i).transpose();
     if (body.value(start) >= clearance) continue;
-    const Eigen::Vector3d outside = outsides.row(v).transpose();
-    for (double travel = kStep; travel <= kReach; travel += kStep) {
-      const Eigen::Vector3d candidate = start + travel * outside;
-      if (body.value(candidate) >= clearance) {
-        positions.row(v) = candidate.transpose();
+    const Eigen::Vector3d outside = outsides.row(info.first_vertex + i).transpose();
+    for (double distance = kStep; distance <= kReach; distance += kStep) {
+      if (body.value(start + distance * outside) >= clearance) {
+        travel(i) = distance;
+        lifted.push_back(i);
         break;
       }
     }
   }
+  Eigen::VectorXd tapered = travel;
+  for (int i = 0; i < info.vertex_count; ++i) {
+    const Eigen::RowVector2d rest = garment_.rest_positions.row(info.first_vertex + i);
+    for (int j : lifted)
+      if (j != i)  // an infinite taper times a zero distance is no number
+        tapered(i) = std::max(
+            tapered(i),
+            travel(j) - taper * (garment_.rest_positions.row(info.first_vertex + j) - rest).norm());
+  }
+  for (int i = 0; i < info.vertex_count; ++i)
+    positions.row(info.first_vertex + i) += tapered(i) * outsides.row(info.first_vertex + i);
 }
 
 }  // namespace garment

@@ -54,9 +54,13 @@ class PieceAligner {
   // body, or nearer than `clearance`, along its outside direction (its row of `outsides`, #V×3:
   // for a placed rest shape rotation · +z, which the continuation points made agree with its
   // partners' outside) until it is `clearance` away: the piece then drapes over the body instead
-  // of crossing it. Vertices that find no way out within a metre stay where they are.
+  // of crossing it. Vertices that find no way out within a metre stay where they are. The cloth
+  // round a lifted vertex goes with it, tapering off by `taper` metres of lift per metre of
+  // pattern distance: lifting the inside vertices alone leaves their neighbours where they were,
+  // so that a skirt back tilted through both legs came out as cloth pulled back round each leg
+  // and forward into the gap between them, stretched three times over (infinity: no taper).
   void lift_out_of_body(int piece, const Eigen::MatrixX3d& outsides, const DistanceGrid& body,
-                        double clearance, Eigen::MatrixX3d& positions) const;
+                        double clearance, double taper, Eigen::MatrixX3d& positions) const;
 
  private:
   const Garment& garment_;

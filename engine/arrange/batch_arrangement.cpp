@@ -86,7 +86,8 @@ void BatchArrangement::place_new_pieces(Eigen::MatrixX3d& positions) {
       drape_from_seam(garment, piece, arranged_, transform, context_->parameters.seam_drape,
                       context_->landmarks.armpits, positions, outsides);
     context_->aligner.lift_out_of_body(piece, outsides, *context_->body,
-                                       context_->parameters.energy.body_distance, positions);
+                                       context_->parameters.energy.body_distance,
+                                       context_->parameters.lift_taper, positions);
     placed_[piece] = true;
   }
 }

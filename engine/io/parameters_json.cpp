@@ -57,6 +57,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("limb_wrap.above_armpit", p.limb_wrap.above_armpit);
   visit("limb_wrap.least_turn", p.limb_wrap.least_turn);
   visit("limb_wrap.clearance", p.limb_wrap.clearance);
+  visit("lift_taper", p.lift_taper);
   visit("rings_per_round", p.rings_per_round);
   visit("body_round.first", p.body_round.first);
   visit("body_round.revisit", p.body_round.revisit);
@@ -152,6 +153,8 @@ void apply_parameters_json(const std::string& json_text, const std::string& sour
     throw_input_error(source, "limb_wrap.above_armpit", "must be 0 or more");
   if (!(wrap.clearance >= 0.0))
     throw_input_error(source, "limb_wrap.clearance", "must be 0 or more");
+  if (!(parameters.lift_taper > 0.0))
+    throw_input_error(source, "lift_taper", "must be more than 0");
   if (!(parameters.post_process_body_buffer > 0.0))
     throw_input_error(source, "post_process_body_buffer", "must be more than 0");
   if (!(parameters.post_process_edge_repulsion_factor >= 0.0))

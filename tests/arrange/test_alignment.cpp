@@ -4,16 +4,20 @@
 // known transform puts it; on the patterns of tests/data the fit moves with its partners (a rigid
 // motion of the placed pieces moves the fit by the same motion); with fewer than two distinct
 // sewing pairs the fit is a translation only; place() writes the transformed rest shape of that
-// piece and nothing else.
+// piece and nothing else; a sheet placed through a ball is lifted out of it, the cloth round the
+// lifted vertices going along with a lift that changes by no more than the taper per metre of
+// pattern, where lifting the inside vertices alone tears a step into the sheet.
 
 #include <QtTest>
 
 #include <Eigen/Geometry>
 #include <random>
 
+#include "energy/analytic_distance_grid.h"
 #include "engine/arrange/alignment.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/quality/flat_placement.h"
+#include "support/rectangle_patterns.h"
 #include "support/test_paths.h"
 
 using namespace garment;
@@ -291,6 +295,57 @@ class AlignmentTest : public QObject {
       QVERIFY(!fit.rotation.isIdentity(1e-6));
       QVERIFY(std::abs(fit.rotation.determinant() - 1.0) < 1e-9);
     }
+  }
+
+  // A 60 × 40 cm sheet in the plane z = 0 through a ball of radius 10 cm centred on it, lifted
+  // along +z: every vertex ends clear of the ball, and the lift of any two vertices differs by at
+  // most the taper times their distance in the pattern, so the sheet bends over the ball instead
+  // of stepping round it. Lifting the inside vertices alone (an infinite taper) makes that step.
+  void lift_out_of_body_takes_the_cloth_round_with_it() {
+    const std::string json =
+        "{\"pattern\": {\"panels\": {" + test::rectangle("sheet", 60, 40) + "}, \"stitches\": []}}";
+    const Garment garment = build_garment(parse_pattern(json, "sheet.json"));
+    const PieceAligner aligner(garment);
+    const Eigen::Vector3d centre(0.3, 0.2, 0.0);
+    const double radius = 0.1, clearance = 0.01;
+    const DistanceGrid ball = test::sphere_distance_grid(centre, radius, 0.5, 0.005);
+    Eigen::MatrixX3d start(garment.vertex_count(), 3);
+    start << garment.rest_positions, Eigen::VectorXd::Zero(garment.vertex_count());
+    const Eigen::MatrixX3d outsides =
+        Eigen::RowVector3d::UnitZ().replicate(garment.vertex_count(), 1);
+    const auto lifted = [&](double taper) {
+      Eigen::MatrixX3d positions = start;
+      aligner.lift_out_of_body(0, outsides, ball, clearance, taper, positions);
+      return positions;
+    };
+    // The steepest change of lift between two vertices, per metre of pattern.
+    const auto steepest = [&](const Eigen::VectorXd& lift) {
+      double steepest_change = 0.0;
+      for (int a = 0; a < garment.vertex_count(); ++a)
+        for (int b = a + 1; b < garment.vertex_count(); ++b)
+          steepest_change =
+              std::max(steepest_change,
+                       std::abs(lift(a) - lift(b)) /
+                           (garment.rest_positions.row(a) - garment.rest_positions.row(b)).norm());
+      return steepest_change;
+    };
+    const double taper = 0.5;
+    const Eigen::MatrixX3d tapered_positions = lifted(taper);
+    const Eigen::MatrixX3d moved = tapered_positions - start;
+    QVERIFY(moved.leftCols(2).isZero());
+    for (int v = 0; v < garment.vertex_count(); ++v)
+      QVERIFY2(ball.value(tapered_positions.row(v).transpose()) >= clearance - 0.002,
+               qPrintable(QString("vertex %1 left in the ball").arg(v)));
+    const Eigen::VectorXd tapered = moved.col(2);
+    QVERIFY(tapered.maxCoeff() >= radius + clearance - 0.005);  // the middle went over the top
+    QVERIFY(steepest(tapered) <= taper + 1e-9);
+    // The corners, 36 cm from the centre, move by what the lift at the top, 11 cm, loses over the
+    // 26 cm beyond the ball's rim at most: 11 cm − 0.5 × 26 cm < 0, so not at all.
+    for (int v = 0; v < garment.vertex_count(); ++v)
+      if ((garment.rest_positions.row(v) - centre.head<2>().transpose()).norm() > 0.35)
+        QCOMPARE(tapered(v), 0.0);
+    const Eigen::VectorXd untapered = (lifted(1e9) - start).col(2);
+    QVERIFY(steepest(untapered) > 2.0);
   }
 };
 

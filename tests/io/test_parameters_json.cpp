@@ -102,6 +102,13 @@ class ParametersJsonTest : public QObject {
     QVERIFY(error_of(R"({"post_process_bending_factor": 0.5})").isEmpty());
   }
 
+  void outOfRangeLiftTaperNamesTheKey() {
+    const QString zero = error_of(R"({"lift_taper": 0})");
+    QVERIFY2(zero.contains("lift_taper"), qPrintable(zero));
+    QVERIFY(!error_of(R"({"lift_taper": -1})").isEmpty());
+    QVERIFY(error_of(R"({"lift_taper": 2.5})").isEmpty());
+  }
+
   void reportedParametersReadBack() {
     ArrangementParameters changed;
     changed.energy.bending_stiffness = 0.004;
