@@ -38,8 +38,9 @@ struct ArrangementParameters {
   // (alignment.h, lift_out_of_body), tapering off by this many metres per metre of pattern. Of
   // the 500 GarmentCode patterns (one run each, two at a time), clean: inside vertices alone 337,
   // taper 0.5 → 339, 1 → 341 (18 gained, among them the four pencil skirt backs that the rigid
-  // fit tilts through both knees; 14 lost, two of them skirt backs pulled through the arms);
-  // templates on f_smpl_average_A40: 8 → 7 (basic_tee__jacket_hood's fronts end behind it).
+  // fit tilts through both knees; 14 lost, gc_0332's flared skirt among them, lifted into the
+  // forearms); templates on f_smpl_average_A40: 8 → 7 (basic_tee__jacket_hood's fronts end
+  // behind it).
   double lift_taper = 1.0;
   // §7.2: body repulsion is switched on `rings_per_round` rings at a time, breadth-first from the
   // sewing boundary, with this budget per round; then a final round over everything.
