@@ -144,15 +144,17 @@ void PieceAligner::lift_out_of_body(int piece, const Eigen::MatrixX3d& outsides,
                                     Eigen::MatrixX3d& positions) const {
   constexpr double kStep = 0.005, kReach = 1.0;  // metres
   const Piece& info = garment_.pieces[piece];
+  const auto rest = garment_.rest_positions.middleRows(info.first_vertex, info.vertex_count);
+  const auto outside = outsides.middleRows(info.first_vertex, info.vertex_count);
+  auto placed = positions.middleRows(info.first_vertex, info.vertex_count);
   // How far each vertex has to travel along its outside direction to clear the body.
   Eigen::VectorXd travel = Eigen::VectorXd::Zero(info.vertex_count);
   std::vector<int> lifted;
   for (int i = 0; i < info.vertex_count; ++i) {
-    const Eigen::Vector3d start = positions.row(info.first_vertex + i).transpose();
+    const Eigen::Vector3d start = placed.row(i).transpose();
     if (body.value(start) >= clearance) continue;
-    const Eigen::Vector3d outside = outsides.row(info.first_vertex + i).transpose();
     for (double distance = kStep; distance <= kReach; distance += kStep) {
-      if (body.value(start + distance * outside) >= clearance) {
+      if (body.value(start + distance * outside.row(i).transpose()) >= clearance) {
         travel(i) = distance;
         lifted.push_back(i);
         break;
@@ -160,16 +162,11 @@ void PieceAligner::lift_out_of_body(int piece, const Eigen::MatrixX3d& outsides,
     }
   }
   Eigen::VectorXd tapered = travel;
-  for (int i = 0; i < info.vertex_count; ++i) {
-    const Eigen::RowVector2d rest = garment_.rest_positions.row(info.first_vertex + i);
+  for (int i = 0; i < info.vertex_count; ++i)
     for (int j : lifted)
       if (j != i)  // an infinite taper times a zero distance is no number
-        tapered(i) = std::max(
-            tapered(i),
-            travel(j) - taper * (garment_.rest_positions.row(info.first_vertex + j) - rest).norm());
-  }
-  for (int i = 0; i < info.vertex_count; ++i)
-    positions.row(info.first_vertex + i) += tapered(i) * outsides.row(info.first_vertex + i);
+        tapered(i) = std::max(tapered(i), travel(j) - taper * (rest.row(j) - rest.row(i)).norm());
+  placed += tapered.asDiagonal() * outside;
 }
 
 }  // namespace garment

@@ -11,6 +11,7 @@
 #include <QtTest>
 
 #include <Eigen/Geometry>
+#include <limits>
 #include <random>
 
 #include "energy/analytic_distance_grid.h"
@@ -344,7 +345,8 @@ class AlignmentTest : public QObject {
     for (int v = 0; v < garment.vertex_count(); ++v)
       if ((garment.rest_positions.row(v) - centre.head<2>().transpose()).norm() > 0.35)
         QCOMPARE(tapered(v), 0.0);
-    const Eigen::VectorXd untapered = (lifted(1e9) - start).col(2);
+    const Eigen::VectorXd untapered =
+        (lifted(std::numeric_limits<double>::infinity()) - start).col(2);
     QVERIFY(steepest(untapered) > 2.0);
   }
 };

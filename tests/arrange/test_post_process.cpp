@@ -17,7 +17,6 @@
 #include <QtTest>
 
 #include <limits>
-
 #include <utility>
 
 #include "engine/arrange/session.h"
