@@ -150,6 +150,28 @@ void ClosestTriangleGrid::build_level(Level& level, const Positions& x, double c
 ClosestTriangleGrid::Hit ClosestTriangleGrid::closest(const Positions& x, const Eigen::Vector3d& p,
                                                       double radius, int skip_vertex,
                                                       int hint) const {
+  return search(
+      x, p, radius, [&](int t) { return has_corner(t, skip_vertex); }, hint);
+}
+
+ClosestTriangleGrid::Hit ClosestTriangleGrid::closest(const Positions& x, const Eigen::Vector3d& p,
+                                                      double radius, int skip_vertex,
+                                                      const std::function<bool(int)>& ignore,
+                                                      int hint) const {
+  return search(
+      x, p, radius, [&](int t) { return has_corner(t, skip_vertex) || ignore(t); }, hint);
+}
+
+bool ClosestTriangleGrid::has_corner(int triangle, int vertex) const {
+  const Eigen::MatrixX3i& triangles = *triangles_;
+  return triangles(triangle, 0) == vertex || triangles(triangle, 1) == vertex ||
+         triangles(triangle, 2) == vertex;
+}
+
+template <class Ignore>
+ClosestTriangleGrid::Hit ClosestTriangleGrid::search(const Positions& x, const Eigen::Vector3d& p,
+                                                     double radius, const Ignore& ignore,
+                                                     int hint) const {
   Hit best;
   if (ids_.empty() || !p.allFinite()) return best;
   const Eigen::MatrixX3i& triangles = *triangles_;
@@ -159,8 +181,8 @@ ClosestTriangleGrid::Hit ClosestTriangleGrid::closest(const Positions& x, const 
   double best_squared = radius * radius;
   int best_rank = -2;
   const auto consider = [&](int t, int rank) {
+    if (ignore(t)) return;
     const int i = triangles(t, 0), j = triangles(t, 1), k = triangles(t, 2);
-    if (i == skip_vertex || j == skip_vertex || k == skip_vertex) return;
     const Eigen::Vector3d a = x.row(i).transpose(), b = x.row(j).transpose(),
                           c = x.row(k).transpose();
     const Eigen::Vector3d weights = closest_point_weights(p, a, b, c);

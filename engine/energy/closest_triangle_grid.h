@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "engine/energy/potential.h"
@@ -37,6 +38,10 @@ class ClosestTriangleGrid {
   // cell sizes. Thread-safe.
   Hit closest(const Positions& x, const Eigen::Vector3d& p, double radius, int skip_vertex,
               int hint = -1) const;
+  // The same, ignoring also every triangle for which ignore(id) is true (cloth next to the query
+  // point's own vertex, for two-sided self repulsion).
+  Hit closest(const Positions& x, const Eigen::Vector3d& p, double radius, int skip_vertex,
+              const std::function<bool(int)>& ignore, int hint = -1) const;
 
   double cell_size() const { return levels_[0].cell_size; }
 
@@ -61,6 +66,10 @@ class ClosestTriangleGrid {
     int find_slot(std::uint64_t key) const;  // -1 when the cell is empty
   };
   void build_level(Level& level, const Positions& x, double cell_size);
+  bool has_corner(int triangle, int vertex) const;
+  template <class Ignore>
+  Hit search(const Positions& x, const Eigen::Vector3d& p, double radius, const Ignore& ignore,
+             int hint) const;
 
   const Eigen::MatrixX3i* triangles_ = nullptr;
   std::vector<int> ids_;                // indexed triangles

@@ -4,7 +4,9 @@
 #include <tbb/parallel_for.h>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 namespace garment {
@@ -31,11 +33,43 @@ void SelfRepulsionPotential::set_stiffness(double stiffness) {
   changed();
 }
 
+void SelfRepulsionPotential::keep_sides(const std::vector<std::vector<int>>& neighbours,
+                                        int ignored_rings) {
+  if (ignored_rings < 1)
+    throw std::invalid_argument("SelfRepulsionPotential: at least one ignored ring");
+  nearby_.assign(vertices_.size(), {});
+  std::vector<char> seen(neighbours.size(), 0);
+  for (std::size_t slot = 0; slot < vertices_.size(); ++slot) {
+    std::vector<int>& reached = nearby_[slot];
+    reached.push_back(vertices_[slot]);
+    seen[vertices_[slot]] = 1;
+    for (std::size_t ring_begin = 0, ring = 0; ring < static_cast<std::size_t>(ignored_rings);
+         ++ring) {
+      const std::size_t ring_end = reached.size();
+      for (std::size_t r = ring_begin; r < ring_end; ++r)
+        for (int n : neighbours[reached[r]])
+          if (!seen[n]) {
+            seen[n] = 1;
+            reached.push_back(n);
+          }
+      ring_begin = ring_end;
+    }
+    for (int v : reached)
+      seen[v] = 0;
+    std::sort(reached.begin(), reached.end());
+  }
+  changed();
+}
+
 void SelfRepulsionPotential::bind_elements(const ActiveSet& active) {
   active_ = active;
   candidates_.clear();
-  for (int v : vertices_)
-    if (active.exists(v)) candidates_.push_back(v);
+  candidate_slots_.clear();
+  for (std::size_t slot = 0; slot < vertices_.size(); ++slot)
+    if (active.exists(vertices_[slot])) {
+      candidates_.push_back(vertices_[slot]);
+      if (!nearby_.empty()) candidate_slots_.push_back(static_cast<int>(slot));
+    }
   hints_.assign(candidates_.size(), -1);
   obstacles_.clear();
   for (int t : obstacle_triangles_)
@@ -68,14 +102,28 @@ void SelfRepulsionPotential::refresh(const Positions& x) {
     grid_.build(x, triangles_, obstacles_, 4.0 * mean_edge, mean_edge);
 
     std::vector<ClosestTriangleGrid::Hit> hits(candidates_.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates_.size(), 64),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t c = range.begin(); c != range.end(); ++c) {
-                          const int v = candidates_[c];
-                          hits[c] = grid_.closest(x, x.row(v).transpose(), settings_.search_radius,
-                                                  v, hints_[c]);
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, candidates_.size(), 64),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t c = range.begin(); c != range.end(); ++c) {
+            const int v = candidates_[c];
+            if (nearby_.empty()) {
+              hits[c] =
+                  grid_.closest(x, x.row(v).transpose(), settings_.search_radius, v, hints_[c]);
+              continue;
+            }
+            const std::vector<int>& nearby = nearby_[candidate_slots_[c]];
+            const auto near = [&](int corner) {
+              return std::binary_search(nearby.begin(), nearby.end(), corner);
+            };
+            hits[c] = grid_.closest(
+                x, x.row(v).transpose(), settings_.search_radius, v,
+                [&](int t) {
+                  return near(triangles_(t, 0)) || near(triangles_(t, 1)) || near(triangles_(t, 2));
+                },
+                hints_[c]);
+          }
+        });
     for (std::size_t c = 0; c < candidates_.size(); ++c) {
       const ClosestTriangleGrid::Hit& hit = hits[c];
       hints_[c] = hit.triangle;
@@ -89,7 +137,18 @@ void SelfRepulsionPotential::refresh(const Positions& x) {
           (x.row(corners[1]).transpose() - a).cross(x.row(corners[2]).transpose() - a);
       const double length = normal.norm();
       if (!(length > 0.0)) continue;
-      contacts_.push_back({v, corners, hit.weights, normal / length});
+      Eigen::Vector3d unit = normal / length;
+      if (!nearby_.empty()) {
+        // Across from the vertex: the offset within 60° of the normal, on either side.
+        const Eigen::Vector3d offset =
+            x.row(v).transpose() -
+            (hit.weights.x() * a + hit.weights.y() * x.row(corners[1]).transpose() +
+             hit.weights.z() * x.row(corners[2]).transpose());
+        const double across = offset.dot(unit);
+        if (std::abs(across) < 0.5 * offset.norm()) continue;
+        if (across < 0.0) unit = -unit;
+      }
+      contacts_.push_back({v, corners, hit.weights, unit});
     }
   }
   last_refresh_seconds_ =

@@ -9,6 +9,13 @@
 // triangle (within a search radius; none beyond it) is looked up again every `refresh_interval`
 // evaluations through a ClosestTriangleGrid. With n, w fixed the energy is piecewise quadratic:
 // gradient exact, Hessian diagonal k n_c² (times w² for corners) exact where active.
+//
+// Two-sided use (keep_sides): where the obstacles are the repelled vertices' own cloth (the pieces
+// of one layer have no inside and outside to each other), n(t) is turned at each refresh to the
+// side the vertex is on, so cloth that does not cross stays uncrossed. The cloth round the vertex
+// is no obstacle: triangles with a corner within a few rings of it are ignored, and so is a
+// closest point beside the vertex rather than across from it (a neighbouring triangle of the same
+// sheet, just beyond the rings).
 
 #include <Eigen/Core>
 #include <array>
@@ -36,6 +43,10 @@ class SelfRepulsionPotential : public Potential {
                          const SelfRepulsionSettings& settings);
 
   void set_stiffness(double stiffness);
+
+  // Switches to two-sided use (see above). neighbours: #V adjacency lists of the garment with its
+  // seams welded, so that rings reach across seams; ignored_rings ≥ 1.
+  void keep_sides(const std::vector<std::vector<int>>& neighbours, int ignored_rings);
 
   const char* name() const override { return "self repulsion"; }
   bool begin_evaluation(const Positions& x, int iteration) override;
@@ -67,6 +78,10 @@ class SelfRepulsionPotential : public Potential {
   std::vector<int> candidates_;  // existing vertices of the set
   std::vector<int> hints_;       // per candidate, the triangle found last time, or -1
   std::vector<int> obstacles_;   // obstacle triangles whose corners all exist
+  // Two-sided use: per vertex of vertices_, the sorted vertices within the ignored rings, and per
+  // candidate its index into vertices_. Empty in one-sided use.
+  std::vector<std::vector<int>> nearby_;
+  std::vector<int> candidate_slots_;
   bool refreshed_ = false;
   ClosestTriangleGrid grid_;
   std::vector<Contact> contacts_;

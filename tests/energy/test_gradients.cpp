@@ -12,6 +12,7 @@
 #include <QtTest>
 
 #include <memory>
+#include <numeric>
 #include <random>
 
 #include "energy/analytic_distance_grid.h"
@@ -332,6 +333,21 @@ class EnergyGradientsTest : public QObject {
                                              garment_.triangles, piece_vertices(garment_, 1),
                                              piece_triangles(garment_, 0), settings),
                                          active_, state_));
+  }
+
+  void self_repulsion_keeping_sides() {
+    // Every vertex repelled from all the cloth, two-sided: the buffer wider than the 1 cm between
+    // the pieces, so that most vertices are pushed off the piece across from them, whichever side
+    // of it they lie on.
+    SelfRepulsionSettings settings{1000.0, 0.015, 0.05, 16};
+    std::vector<int> vertices(garment_.vertex_count()), triangles(garment_.triangle_count());
+    std::iota(vertices.begin(), vertices.end(), 0);
+    std::iota(triangles.begin(), triangles.end(), 0);
+    auto two_sided =
+        std::make_shared<SelfRepulsionPotential>(garment_.triangles, vertices, triangles, settings);
+    const MeshEdges mesh = build_mesh_edges(garment_.triangles, garment_.vertex_count());
+    two_sided->keep_sides(vertex_neighbours(mesh.edges, garment_.vertex_count()), 1);
+    expect_exact("self repulsion (two-sided)", check(two_sided, active_, state_));
   }
 };
 

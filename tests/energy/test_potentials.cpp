@@ -2,8 +2,8 @@
 // invariants (zero on affine images of the flat rest shape and across a flat seam, the continuum
 // limit on a cylinder), the element rule of the ActiveSet, the body-distance switch, edge
 // repulsion catching an edge that cuts a curved body between two ends held outside it, the
-// direction of self repulsion, and that the assembled energy is the sum of the potentials'
-// energies whatever the number of threads.
+// direction of self repulsion (one-sided, and two-sided within a sheet), and that the assembled
+// energy is the sum of the potentials' energies whatever the number of threads.
 
 #include <tbb/global_control.h>
 #include <QtTest>
@@ -14,6 +14,7 @@
 #include <random>
 
 #include "energy/analytic_distance_grid.h"
+#include "engine/core/mesh_topology.h"
 #include "engine/energy/bending_potential.h"
 #include "engine/energy/body_distance_potential.h"
 #include "engine/energy/body_edge_repulsion_potential.h"
@@ -258,6 +259,58 @@ class PotentialsTest : public QObject {
     QVERIFY(std::abs(energy - repelled.size() * 0.5 * 1000.0 * 0.006 * 0.006) < 1e-9);
     for (int v : repelled)
       QVERIFY(gradient(v, 2) < 0.0 && std::abs(gradient(v, 0)) < 1e-9);
+  }
+
+  // Two-sided self repulsion of a sheet from itself (keep_sides): flat, the cloth beside each
+  // vertex is no obstacle; folded over with its halves 2 mm apart, each half is pushed off the
+  // other towards the side it lies on, whichever that is (a one-sided repulsion would push one
+  // half through the other).
+  void keepingSidesPushesFoldedClothApartAndLeavesItFlat() {
+    const Garment garment = test::load_test_garment("energy/two_rectangles.json", 0.02);
+    std::vector<int> vertices, triangles;
+    for (int v = 0; v < garment.vertex_count(); ++v)
+      if (garment.vertex_piece[v] == 0) vertices.push_back(v);
+    for (int t = 0; t < garment.triangle_count(); ++t)
+      if (garment.triangle_piece[t] == 0) triangles.push_back(t);
+    ActiveSet active(garment.vertex_count(), VertexRole::Outside);
+    for (int v : vertices)
+      active.set_role(v, VertexRole::Free);
+    const MeshEdges mesh = build_mesh_edges(garment.triangles, garment.vertex_count());
+    const auto repulsion = [&] {
+      auto self = std::make_shared<SelfRepulsionPotential>(
+          garment.triangles, vertices, triangles, SelfRepulsionSettings{1000.0, 0.004, 0.02, 16});
+      self->keep_sides(vertex_neighbours(mesh.edges, garment.vertex_count()), 3);
+      return self;
+    };
+    const Eigen::MatrixX3d flat = test::flat_positions(garment, 0.0);
+    QCOMPARE(energy_of(repulsion(), active, flat), 0.0);
+
+    // The 40 cm wide piece folded at u = 20 cm, the far half laid back over (or under) the near.
+    const double fold = 0.2;
+    for (const double lift : {0.002, -0.002}) {
+      Eigen::MatrixX3d x = flat;
+      std::vector<bool> far_half(garment.vertex_count(), false);
+      for (int v : vertices)
+        if (garment.rest_positions(v, 0) > fold) {
+          far_half[v] = true;
+          x(v, 0) = 2.0 * fold - garment.rest_positions(v, 0);
+          x(v, 2) = lift;
+        }
+      Eigen::MatrixX3d gradient;
+      QVERIFY(energy_of(repulsion(), active, x, &gradient) > 0.0);
+      int pushed_away = 0, pushed_towards = 0;
+      for (int v : vertices) {
+        // Force −gradient along +z for the half on top.
+        const double outward = -gradient(v, 2) * (far_half[v] == (lift > 0.0) ? 1.0 : -1.0);
+        if (outward > 0.0) ++pushed_away;
+        if (outward < 0.0) ++pushed_towards;
+      }
+      qInfo("lift %+.3f m: %d vertices pushed away from the other half, %d towards it", lift,
+            pushed_away, pushed_towards);
+      QCOMPARE(pushed_towards, 0);
+      // All but the rings round the fold: most of the 40 × 60 cm piece's vertices.
+      QVERIFY(pushed_away > static_cast<int>(vertices.size()) / 2);
+    }
   }
 
   // The grid's answer is the brute-force one: the least (distance, rank), the hint ranking first
