@@ -1,5 +1,7 @@
 #include "engine/arrange/arrangement_context.h"
 
+#include "engine/quality/garment_metrics.h"
+
 namespace garment {
 
 ArrangementContext::ArrangementContext(const Garment& garment_in,
@@ -13,7 +15,8 @@ ArrangementContext::ArrangementContext(const Garment& garment_in,
       graph(garment_in),
       aligner(garment_in),
       masses(vertex_masses(garment_in, parameters_in.energy.fabric_density)),
-      mesh(build_mesh_edges(garment_in.triangles, garment_in.vertex_count())) {
+      mesh(build_mesh_edges(garment_in.triangles, garment_in.vertex_count())),
+      welded(weld_seams_and_darts(garment_in)) {
   const EnergyParameters& energy = parameters.energy;
   stretch = std::make_shared<StretchPotential>(
       garment, energy.stretch_stiffness, energy.dart_stiffness, energy.stretch_compression_factor);

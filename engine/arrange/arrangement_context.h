@@ -32,6 +32,7 @@ struct ArrangementContext {
   PieceAligner aligner;
   Eigen::VectorXd masses;  // #V kg
   MeshEdges mesh;          // the garment's mesh edges (post-process)
+  Eigen::VectorXi welded;  // #V welded vertex ids, seams and darts (weld_seams_and_darts)
 
   std::shared_ptr<StretchPotential> stretch;
   std::shared_ptr<BendingPotential> bending;  // interior edges and consistent seams

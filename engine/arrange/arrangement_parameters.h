@@ -124,6 +124,13 @@ struct ArrangementParameters {
   // edge midpoints too, since dropped): 26 clean without, 28 at 1 (wide flared cuffs squeezed
   // into the plane crumple), 31 at ¼, 30 at 0.1.
   double post_process_leg_separation_factor = 0.25;
+  // Stiffness of the two-sided self repulsion among the pieces of one layer
+  // (own_cloth_repulsion.h), as a fraction of the repulsion between layers (0: off). Without it,
+  // cloth of one layer settling under gravity falls through itself: gc_0195's circle skirt drags
+  // the back of its waistband down and over itself. All 500 GarmentCode patterns: 341 → 344 clean
+  // (gained gc_0061, 0100, 0195, 0313; lost gc_0271, by 7 edges crossing the body), garments
+  // failing with folds 101 → 90.
+  double post_process_own_layer_repulsion_factor = 1.0;
   // Cloth past this strain is this many times as stiff in the post-process (stretch_potential.h):
   // a few edges of a snug waistband or an armhole, left at 20-25 % by springs that pull as softly
   // at 20 % as at 2 %, come back under the limit instead of failing the garment. Measured on the

@@ -14,6 +14,7 @@ class GarmentGraph {
   explicit GarmentGraph(const Garment& garment);
 
   const std::vector<int>& neighbours(int vertex) const { return neighbours_[vertex]; }
+  const std::vector<std::vector<int>>& adjacency() const { return neighbours_; }  // #V lists
 
   // Ring distance from `sources`, walking only through vertices with allowed[v] (sources too);
   // -1 where unreached or farther than max_rings. allowed: #V.

@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "engine/arrange/leg_tubes.h"
+#include "engine/arrange/own_cloth_repulsion.h"
 #include "engine/arrange/session.h"
 #include "engine/arrange/untangle.h"
 #include "engine/core/mesh_topology.h"
@@ -32,8 +33,8 @@ void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vec
               Objective& objective, SolverSettings settings, Eigen::MatrixX3d& positions,
               Observer* observer, PostProcessReport& result) {
   const Garment& garment = context.garment;
+  const Eigen::VectorXi& welded = context.welded;
   const ArrangementParameters& parameters = context.parameters;
-  const Eigen::VectorXi welded = weld_seams_and_darts(garment);
   Eigen::VectorXi vertex_piece(garment.vertex_count());
   for (int v = 0; v < garment.vertex_count(); ++v)
     vertex_piece(v) = garment.vertex_piece(v);
@@ -216,6 +217,11 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
     if (!obstacles.empty() && !repelled.empty())
       objective.add(
           std::make_shared<SelfRepulsionPotential>(garment.triangles, repelled, obstacles, self));
+    if (parameters.post_process_own_layer_repulsion_factor > 0.0)
+      if (auto own_layer = own_cloth_repulsion(
+              context, layer, positions,
+              self.stiffness * parameters.post_process_own_layer_repulsion_factor, self.buffer))
+        objective.add(own_layer);
     for (int piece : layer)
       earlier[piece] = true;
   }

@@ -83,6 +83,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_body_buffer", p.post_process_body_buffer);
   visit("post_process_edge_repulsion_factor", p.post_process_edge_repulsion_factor);
   visit("post_process_leg_separation_factor", p.post_process_leg_separation_factor);
+  visit("post_process_own_layer_repulsion_factor", p.post_process_own_layer_repulsion_factor);
   visit("post_process_strain_limit", p.post_process_strain_limit);
   visit("post_process_strain_limit_factor", p.post_process_strain_limit_factor);
   visit("post_process_untangle_passes", p.post_process_untangle_passes);
@@ -159,6 +160,9 @@ void apply_parameters_json(const std::string& json_text, const std::string& sour
     throw_input_error(source, "post_process_body_buffer", "must be more than 0");
   if (!(parameters.post_process_edge_repulsion_factor >= 0.0))
     throw_input_error(source, "post_process_edge_repulsion_factor", "must be at least 0 (0: off)");
+  if (!(parameters.post_process_own_layer_repulsion_factor >= 0.0))
+    throw_input_error(source, "post_process_own_layer_repulsion_factor",
+                      "must be at least 0 (0: off)");
   if (!(parameters.post_process_step > 0.0))
     throw_input_error(source, "post_process_step", "must be more than 0 (metres)");
   if (!(parameters.post_process_compression_factor > 0.0 &&

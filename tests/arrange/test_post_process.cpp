@@ -10,7 +10,9 @@
 // - the untangling passes (untangle.h) on gc_0012, whose skirt panels cross at a side seam;
 // - the post-process's stiffer bending on basic_tee__tee, whose sleeves fold without it;
 // - the leg separation (leg_tubes.h, side_barrier_potential.h) on gc_0431, trousers whose legs
-//   reach into each other's side between the body's legs without it.
+//   reach into each other's side between the body's legs without it;
+// - the two-sided self repulsion within a layer (own_cloth_repulsion.h) on gc_0195, a circle
+//   skirt whose waistband folds through itself without it.
 
 #include <tbb/global_control.h>
 
@@ -212,6 +214,36 @@ class PostProcessTest : public QObject {
     // Stiffer cloth that still closes its seams and keeps to the strain bound.
     QVERIFY(smooth.max_seam_gap_m < 0.005);
     QVERIFY(smooth.max_strain < 0.2);
+  }
+
+  void ownLayerRepulsionKeepsAWaistbandFromFoldingThroughItself() {
+    if (test::sanitizer_build())
+      QSKIP("a sanitizer build: the repulsion's kernel runs there in energy_gradients");
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    // gc_0195 (a circle skirt and a straight waistband in two parts) on its body,
+    // m_smpl_average_A40: the heavy skirt settling under gravity drags the back of the waistband,
+    // its seed, down and over itself.
+    const std::shared_ptr<const Scene> scene =
+        load_scene(test::test_data("patterns/gc_0195_specification.json"),
+                   test::test_data("bodies/m_smpl_average_A40.obj"));
+    ArrangementParameters parameters;
+    const Outcome repelled = run(scene, parameters);
+    parameters.post_process_own_layer_repulsion_factor = 0.0;
+    const Outcome free = run(scene, parameters);
+    QCOMPARE(repelled.arranged, free.arranged);
+    const auto [before, after] = measure_post_processed(*scene, free, repelled);
+    qInfo(
+        "cloth edges crossing cloth: %d without the repulsion within layers, %d with; folds %d, "
+        "%d; seam gap %.1f mm, %.1f mm; max strain %.3f, %.3f",
+        before.self_crossing_edges, after.self_crossing_edges, before.folds, after.folds,
+        1000.0 * before.max_seam_gap_m, 1000.0 * after.max_seam_gap_m, before.max_strain,
+        after.max_strain);
+    QVERIFY(before.self_crossing_edges > 0);
+    QVERIFY(before.folds > 0);
+    QCOMPARE(after.self_crossing_edges, 0);
+    QCOMPARE(after.folds, 0);
+    QVERIFY(after.max_seam_gap_m < 0.005);
+    QVERIFY(after.max_strain < 0.2);
   }
 
   void legSeparationKeepsTrouserLegsApart() {

@@ -109,6 +109,12 @@ class ParametersJsonTest : public QObject {
     QVERIFY(error_of(R"({"lift_taper": 2.5})").isEmpty());
   }
 
+  void negativeOwnLayerRepulsionNamesTheKey() {
+    const QString negative = error_of(R"({"post_process_own_layer_repulsion_factor": -0.5})");
+    QVERIFY2(negative.contains("post_process_own_layer_repulsion_factor"), qPrintable(negative));
+    QVERIFY(error_of(R"({"post_process_own_layer_repulsion_factor": 0})").isEmpty());
+  }
+
   void reportedParametersReadBack() {
     ArrangementParameters changed;
     changed.energy.bending_stiffness = 0.004;
