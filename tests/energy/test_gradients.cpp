@@ -30,6 +30,7 @@
 #include "engine/energy/side_barrier_potential.h"
 #include "engine/energy/stretch_potential.h"
 #include "engine/energy/upward_potential.h"
+#include "support/flat_garment.h"
 #include "support/test_paths.h"
 
 using namespace garment;
@@ -118,20 +119,6 @@ ActiveSet mixed_active_set(int vertex_count) {
   for (int v = 1; v < vertex_count; v += 5)
     active.set_body_repulsion(v, false);
   return active;
-}
-
-std::vector<int> piece_vertices(const Garment& garment, int piece) {
-  std::vector<int> vertices(static_cast<std::size_t>(garment.pieces[piece].vertex_count));
-  for (std::size_t i = 0; i < vertices.size(); ++i)
-    vertices[i] = garment.pieces[piece].first_vertex + static_cast<int>(i);
-  return vertices;
-}
-
-std::vector<int> piece_triangles(const Garment& garment, int piece) {
-  std::vector<int> triangles(static_cast<std::size_t>(garment.pieces[piece].triangle_count));
-  for (std::size_t i = 0; i < triangles.size(); ++i)
-    triangles[i] = garment.pieces[piece].first_triangle + static_cast<int>(i);
-  return triangles;
 }
 
 }  // namespace
@@ -256,7 +243,7 @@ class EnergyGradientsTest : public QObject {
 
   void centring() {
     expect_exact("centring",
-                 check(std::make_shared<CentringPotential>(piece_vertices(garment_, 0),
+                 check(std::make_shared<CentringPotential>(test::piece_vertices(garment_, 0),
                                                            Eigen::Vector3d(0.1, 0.2, 0.3), 1000.0),
                        active_, state_));
   }
@@ -273,8 +260,8 @@ class EnergyGradientsTest : public QObject {
     expect_linear("gravity",
                   check(std::make_shared<GravityPotential>(vertex_masses(garment_, 0.15), 9.81),
                         active_, state_));
-    std::vector<int> both = piece_vertices(garment_, 0);
-    const std::vector<int> second = piece_vertices(garment_, 1);
+    std::vector<int> both = test::piece_vertices(garment_, 0);
+    const std::vector<int> second = test::piece_vertices(garment_, 1);
     both.insert(both.end(), second.begin(), second.end());
     expect_linear("upward",
                   check(std::make_shared<UpwardPotential>(garment_, both, 0.02), active_, state_));
@@ -330,8 +317,8 @@ class EnergyGradientsTest : public QObject {
     // Piece 1 lies 1 cm behind piece 0 (± noise): most of its vertices are on the wrong side.
     SelfRepulsionSettings settings{1000.0, 0.004, 0.05, 16};
     expect_exact("self repulsion", check(std::make_shared<SelfRepulsionPotential>(
-                                             garment_.triangles, piece_vertices(garment_, 1),
-                                             piece_triangles(garment_, 0), settings),
+                                             garment_.triangles, test::piece_vertices(garment_, 1),
+                                             test::piece_triangles(garment_, 0), settings),
                                          active_, state_));
   }
 

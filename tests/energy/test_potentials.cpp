@@ -242,11 +242,8 @@ class PotentialsTest : public QObject {
     Eigen::MatrixX3d x = test::flat_positions(garment, 0.0);
     for (int v = 0; v < garment.vertex_count(); ++v)
       if (garment.vertex_piece[v] == 1) x(v, 2) = -0.002;
-    std::vector<int> repelled, obstacles;
-    for (int v = 0; v < garment.vertex_count(); ++v)
-      if (garment.vertex_piece[v] == 1) repelled.push_back(v);
-    for (int t = 0; t < garment.triangle_count(); ++t)
-      if (garment.triangle_piece[t] == 0) obstacles.push_back(t);
+    const std::vector<int> repelled = test::piece_vertices(garment, 1);
+    const std::vector<int> obstacles = test::piece_triangles(garment, 0);
     ActiveSet active(garment.vertex_count(), VertexRole::Fixed);
     for (int v : repelled)
       active.set_role(v, VertexRole::Free);
@@ -267,11 +264,8 @@ class PotentialsTest : public QObject {
   // half through the other).
   void keepingSidesPushesFoldedClothApartAndLeavesItFlat() {
     const Garment garment = test::load_test_garment("energy/two_rectangles.json", 0.02);
-    std::vector<int> vertices, triangles;
-    for (int v = 0; v < garment.vertex_count(); ++v)
-      if (garment.vertex_piece[v] == 0) vertices.push_back(v);
-    for (int t = 0; t < garment.triangle_count(); ++t)
-      if (garment.triangle_piece[t] == 0) triangles.push_back(t);
+    const std::vector<int> vertices = test::piece_vertices(garment, 0);
+    const std::vector<int> triangles = test::piece_triangles(garment, 0);
     ActiveSet active(garment.vertex_count(), VertexRole::Outside);
     for (int v : vertices)
       active.set_role(v, VertexRole::Free);

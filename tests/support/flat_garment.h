@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <vector>
 
 #include "engine/energy/bending_potential.h"
 #include "engine/energy/energy_parameters.h"
@@ -19,6 +20,21 @@ inline Garment load_test_garment(const char* relative, double edge_length) {
   MeshingOptions options;
   options.target_edge_length = edge_length;
   return build_garment(load_pattern(test_data(relative)), options);
+}
+
+// The global ids of one piece's vertices, and of its triangles.
+inline std::vector<int> piece_vertices(const Garment& garment, int piece) {
+  std::vector<int> vertices(static_cast<std::size_t>(garment.pieces[piece].vertex_count));
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    vertices[i] = garment.pieces[piece].first_vertex + static_cast<int>(i);
+  return vertices;
+}
+
+inline std::vector<int> piece_triangles(const Garment& garment, int piece) {
+  std::vector<int> triangles(static_cast<std::size_t>(garment.pieces[piece].triangle_count));
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    triangles[i] = garment.pieces[piece].first_triangle + static_cast<int>(i);
+  return triangles;
 }
 
 // #V×3: rest positions in the plane z = 0, piece p shifted by offset × p along x.
