@@ -28,8 +28,8 @@ struct ArrangementParameters {
   int refine_rings = 16;
 
   StepBudget align{150, 400};
-  // §7.1's start for pieces hanging from a seam round the body that the rigid fit lays sideways
-  // (seam_drape.h); sideways_below = −1 keeps every rigid fit.
+  // §7.1's start for pieces hanging from a seam round the body, round the torso's axis, and for
+  // hoods rising from the neckline (seam_drape.h); sideways_below = −1 keeps every rigid fit.
   SeamDrapeSettings seam_drape;
   // §7.1's start for pieces sewn round an arm, sleeves and cuffs (limb_wrap.h); reach = 0 keeps
   // every rigid fit.
@@ -91,10 +91,14 @@ struct ArrangementParameters {
   double post_process_repulsion_factor = 1.0;
   double post_process_gravity_factor = 1.0;
   // Fraction of the stretch stiffness a compressed spring keeps in the post-process (the
-  // arrangement's is energy.stretch_compression_factor): next to nothing, so that a flared piece
-  // can hang with its hem compressed instead of standing out round the body. The 125 above:
-  // 0.05 → 71 clean, 0.002 → 76 (with the post-process's bending 0.2× as stiff: 71 and 73).
-  double post_process_compression_factor = 0.002;
+  // arrangement's is energy.stretch_compression_factor): little, so that a flared piece can hang
+  // with its hem compressed instead of standing out round the body. The 125 above: 0.05 → 71
+  // clean, 0.002 → 76 (with the post-process's bending 0.2× as stiff: 71 and 73). But at 0.002 a
+  // jacket's open fronts, held by nothing at their front edges, shrink sideways off the bust and
+  // roll up at the side seams (basic_tee__jacket: both fronts "behind the body"). Clean of the
+  // 23 templates: 0.002 → 7, 0.01 → 11 (three jackets and a pair of trousers more), 0.05 → 9; of
+  // the 500 GarmentCode patterns (with seam_drape.h's hanging start): 0.002 → 353, 0.01 → 356.
+  double post_process_compression_factor = 0.01;
   // Bending stiffness of the post-process as a multiple of energy.bending_stiffness. With the
   // arrangement's bending, cloth that gravity and the strain limit squeeze (a sleeve below the
   // shoulder, a loose back) creases into folds: basic_tee__tee leaves the arrangement with 1

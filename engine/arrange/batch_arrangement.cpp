@@ -84,7 +84,7 @@ void BatchArrangement::place_new_pieces(Eigen::MatrixX3d& positions) {
     if (!wrap_round_arm(garment, piece, *guides, context_->landmarks, *context_->body,
                         context_->parameters.limb_wrap, positions, outsides))
       drape_from_seam(garment, piece, arranged_, transform, context_->parameters.seam_drape,
-                      context_->landmarks.armpits, positions, outsides);
+                      context_->landmarks, positions, outsides);
     context_->aligner.lift_out_of_body(piece, outsides, *context_->body,
                                        context_->parameters.energy.body_distance,
                                        context_->parameters.lift_taper, positions);

@@ -1,7 +1,7 @@
 // drape_from_seam (engine/arrange/seam_drape.h) on the circle skirt of gc_0068: its back panel is
 // a half annulus sewn along the inner arc to the two back bodice halves. With the bodice's seam
 // laid where the rigid fit lays the panel flat and horizontal (the disc of the flying-skirt
-// failure), the panel is hung instead:
+// failure) and the torso's axis through the arc's centre, the panel is hung instead:
 //   - its seam vertices stay on their partners (within the 5 mm seam-gap verdict);
 //   - nothing rises above the seam, and each vertex lies as far below it as cos θ times its
 //     distance from the seam in the pattern (measured here from the outline, not the engine's
@@ -10,9 +10,11 @@
 //     corners) and no edge is stretched past 20 %: the hanging cone only compresses the hem;
 // at the flare angle when the seam turns as much round the body as in the pattern (the cone that
 // keeps its length would be flat), and at asin(1 / 1.5) on a waist that turns 1.5 times as much;
-// and it is left alone when the rigid fit already hangs it, when it would go up from its seam (a
+// and it is left alone when the rigid fit already hangs it (if only sideways fits are to be
+// hung), when it would go up from its seam (a
 // bodice half on the skirt), when hung it would face the body (the disc's outside down), or when
-// the option is off.
+// the option is off. The ten flared panels of gc_0160's skirt, hung side by side from a round
+// waist, start clear of each other; trouser legs are not hung round the torso.
 
 #include <QtTest>
 
@@ -20,10 +22,13 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <tuple>
 
 #include "engine/arrange/seam_drape.h"
+#include "engine/core/mesh_topology.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/pattern.h"
+#include "engine/quality/exact_intersections.h"
 #include "support/test_paths.h"
 
 using namespace garment;
@@ -31,8 +36,17 @@ using namespace garment;
 namespace {
 
 constexpr double kSeamHeight = 1.1;  // metres
-// The hanging tests' seams are below the armpits: nothing rises from them.
-constexpr double kNoRising = std::numeric_limits<double>::infinity();
+
+// A body whose torso's axis stands at `centre` and whose armpits are at `armpits` (nothing rises
+// from a seam below them).
+BodyLandmarks torso_at(const Eigen::Vector3d& centre,
+                       double armpits = std::numeric_limits<double>::infinity()) {
+  BodyLandmarks landmarks;
+  landmarks.torso.origin = centre;
+  landmarks.torso.direction = Eigen::Vector3d::UnitY();
+  landmarks.armpits = armpits;
+  return landmarks;
+}
 
 Garment circle_skirt_dress() {
   return build_garment(
@@ -120,6 +134,47 @@ std::vector<double> distance_to_seam(const Garment& garment, int piece,
   return distances;
 }
 
+// The seam of `piece` with the placed pieces as (own, partner) vertex pairs ordered across the
+// pattern, and the centre of the circle through its ends and middle in the pattern (a circle
+// skirt panel's waist is one arc).
+struct WaistArc {
+  std::vector<std::pair<int, int>> seam;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+};
+
+WaistArc waist_arc(const Garment& garment, int piece, const std::vector<bool>& placed) {
+  WaistArc arc;
+  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k)
+    for (int side = 0; side < 2; ++side) {
+      const int own = garment.sewing_pairs(k, side), partner = garment.sewing_pairs(k, 1 - side);
+      if (garment.vertex_piece(own) == piece && placed[garment.vertex_piece(partner)])
+        arc.seam.emplace_back(own, partner);
+    }
+  if (arc.seam.size() < 3) return arc;
+  std::sort(arc.seam.begin(), arc.seam.end(), [&](const auto& a, const auto& b) {
+    return garment.rest_positions(a.first, 0) < garment.rest_positions(b.first, 0);
+  });
+  const Eigen::Vector2d p0 = garment.rest_positions.row(arc.seam.front().first);
+  const Eigen::Vector2d p1 = garment.rest_positions.row(arc.seam[arc.seam.size() / 2].first);
+  const Eigen::Vector2d p2 = garment.rest_positions.row(arc.seam.back().first);
+  const double d =
+      2.0 * (p0.x() * (p1.y() - p2.y()) + p1.x() * (p2.y() - p0.y()) + p2.x() * (p0.y() - p1.y()));
+  if (std::abs(d) < 1e-9) return arc;
+  arc.centre =
+      Eigen::Vector2d((p0.squaredNorm() * (p1.y() - p2.y()) + p1.squaredNorm() * (p2.y() - p0.y()) +
+                       p2.squaredNorm() * (p0.y() - p1.y())) /
+                          d,
+                      (p0.squaredNorm() * (p2.x() - p1.x()) + p1.squaredNorm() * (p0.x() - p2.x()) +
+                       p2.squaredNorm() * (p1.x() - p0.x())) /
+                          d);
+  return arc;
+}
+
+// Where `transform` takes the point `rest` of the pattern plane.
+Eigen::Vector3d placed_at(const RigidTransform& transform, const Eigen::Vector2d& rest) {
+  return transform.rotation * Eigen::Vector3d(rest.x(), rest.y(), 0.0) + transform.translation;
+}
+
 // gc_0068's back skirt panel with the back bodice arranged where the rigid fit lays the panel flat
 // behind the body; the skirt front, sewn to its sides, is in the same batch.
 struct FlatDisc {
@@ -129,6 +184,9 @@ struct FlatDisc {
   Eigen::MatrixX3d positions = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
   std::vector<bool> placed =
       partners_at(garment, skirt, {"left_btorso", "right_btorso"}, transform, positions);
+  // The torso's axis through the waist arc's centre.
+  BodyLandmarks landmarks =
+      torso_at(placed_at(transform, waist_arc(garment, skirt, placed).centre));
 };
 
 // What every start must keep: the piece's seam vertices on their placed partners (`partners`:
@@ -180,11 +238,11 @@ StartShape start_shape(const Garment& garment, int piece, const std::vector<bool
 // start against `flare` (θ); returns what failed, or nothing.
 QString check_hanging(const Garment& garment, int piece, const std::vector<bool>& placed,
                       const RigidTransform& transform, const SeamDrapeSettings& settings,
-                      Eigen::MatrixX3d positions, double flare) {
+                      const BodyLandmarks& landmarks, Eigen::MatrixX3d positions, double flare) {
   const Piece& info = garment.pieces[piece];
   const Eigen::MatrixX3d partners = positions;
   Eigen::MatrixX3d outsides = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
-  if (!drape_from_seam(garment, piece, placed, transform, settings, kNoRising, positions, outsides))
+  if (!drape_from_seam(garment, piece, placed, transform, settings, landmarks, positions, outsides))
     return "not draped";
 
   const StartShape shape = start_shape(garment, piece, placed, partners, positions, outsides);
@@ -207,6 +265,125 @@ QString check_hanging(const Garment& garment, int piece, const std::vector<bool>
   return shape.failure();
 }
 
+// The seam of `piece` with the placed pieces: its outline's run from the end of its longest
+// stretch not sewn to them to the last vertex sewn to them, in outline order (it may wrap past the
+// outline's first vertex; a dart in a waist is a stretch inside it), each vertex with its partners
+// (none off the seam, one on each of two seams at a corner) and its arc length from the start.
+struct SewnRun {
+  std::vector<int> vertices;
+  std::vector<std::vector<int>> partners;
+  std::vector<double> along;
+};
+
+SewnRun sewn_run(const Garment& garment, int piece, const std::vector<bool>& placed) {
+  std::vector<std::vector<int>> partners_of(garment.vertex_count());
+  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k)
+    for (int side = 0; side < 2; ++side) {
+      const int own = garment.sewing_pairs(k, side), partner = garment.sewing_pairs(k, 1 - side);
+      if (garment.vertex_piece(own) == piece && placed[garment.vertex_piece(partner)])
+        partners_of[own].push_back(partner);
+    }
+  const std::vector<int>& outline = garment.pieces[piece].outline;
+  const std::size_t n = outline.size();
+  const auto sewn = [&](std::size_t k) { return !partners_of[outline[k % n]].empty(); };
+  const auto step = [&](std::size_t k) {
+    return (garment.rest_positions.row(outline[(k + 1) % n]) -
+            garment.rest_positions.row(outline[k % n]))
+        .norm();
+  };
+  std::size_t first = n, last = n;
+  double longest = -1.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!sewn(k)) continue;
+    double stretch = 0.0;
+    std::size_t before = k + n;
+    do {
+      --before;
+      stretch += step(before);
+    } while (!sewn(before));
+    if (stretch > longest) {
+      longest = stretch;
+      first = k;
+      last = before;
+    }
+  }
+  SewnRun run;
+  if (first == n) return run;
+  for (std::size_t k = first; run.vertices.empty() || (k - 1) % n != last % n; ++k) {
+    run.along.push_back(run.vertices.empty() ? 0.0 : run.along.back() + step(k - 1));
+    run.vertices.push_back(outline[k % n]);
+    run.partners.push_back(partners_of[outline[k % n]]);
+  }
+  return run;
+}
+
+// Panels sewn side by side round a waist (their names start with `prefix`; the rest of the
+// garment is placed): their seams with the placed pieces laid one after the other round a level
+// circle as long as all of them together, 1.1 m up round the torso's axis (x = z = 0), from
+// `first` in the order their seams join them, the way each outline runs (the panels' outsides,
+// +z in the pattern, then face out).
+struct PanelsRoundWaist {
+  Garment garment;
+  std::vector<int> panels;  // in order round the waist
+  std::vector<bool> placed;
+  Eigen::MatrixX3d positions;
+
+  PanelsRoundWaist(const char* pattern, const std::string& prefix, const std::string& first)
+      : garment(build_garment(load_pattern(test::test_data(pattern)))),
+        positions(Eigen::MatrixX3d::Zero(garment.vertex_count(), 3)) {
+    std::vector<bool> is_panel(garment.pieces.size(), false);
+    for (std::size_t p = 0; p < garment.pieces.size(); ++p)
+      is_panel[p] = garment.pieces[p].name.starts_with(prefix);
+    placed.resize(garment.pieces.size());
+    for (std::size_t p = 0; p < garment.pieces.size(); ++p)
+      placed[p] = !is_panel[p];
+    // The next panel round: the one sewn to the end of this panel's waist.
+    std::vector<SewnRun> runs(garment.pieces.size());
+    for (int panel = piece_named(garment, first); panel >= 0 && runs[panel].vertices.empty();) {
+      panels.push_back(panel);
+      runs[panel] = sewn_run(garment, panel, placed);
+      if (runs[panel].vertices.empty()) break;
+      const int end = runs[panel].vertices.back();
+      int next = -1;
+      for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k)
+        for (int side = 0; side < 2; ++side) {
+          const int other = garment.vertex_piece(garment.sewing_pairs(k, 1 - side));
+          if (garment.sewing_pairs(k, side) == end && is_panel[other] && other != panel)
+            next = other;
+        }
+      panel = next;
+    }
+    double waist = 0.0;
+    for (int panel : panels)
+      waist += runs[panel].along.empty() ? 0.0 : runs[panel].along.back();
+    const double radius = waist / (2.0 * std::numbers::pi);
+    double so_far = 0.0;
+    for (int panel : panels) {
+      const SewnRun& run = runs[panel];
+      for (std::size_t k = 0; k < run.vertices.size(); ++k) {
+        const double angle = 2.0 * std::numbers::pi * (so_far + run.along[k]) / waist;
+        for (int partner : run.partners[k])
+          positions.row(partner) << radius * std::cos(angle), kSeamHeight, radius * std::sin(angle);
+      }
+      so_far += run.along.back();
+    }
+  }
+
+  // Edge-triangle contacts among the panels (seams welded: neighbours meeting at a seam touch).
+  std::size_t contacts(const Eigen::MatrixX3d& at) const {
+    const MeshEdges mesh = build_mesh_edges(garment.triangles, garment.vertex_count());
+    std::vector<int> edges, triangles;
+    for (Eigen::Index e = 0; e < mesh.edges.rows(); ++e)
+      if (!placed[garment.vertex_piece(mesh.edges(e, 0))]) edges.push_back(static_cast<int>(e));
+    for (int t = 0; t < garment.triangle_count(); ++t)
+      if (!placed[garment.triangle_piece(t)]) triangles.push_back(t);
+    return edge_triangle_contacts(at, mesh.edges(edges, Eigen::all),
+                                  garment.triangles(triangles, Eigen::all),
+                                  welded_vertices(garment))
+        .size();
+  }
+};
+
 // A right hood with the bodice's neckline laid on the right half of a ring round the neck, 1.45 m
 // up, as long as the hood's seam (its partners are sewn to it at equal spacing): each seam
 // vertex's partner at the angle its arc length along the seam gives, from the back (−z) round the
@@ -223,34 +400,12 @@ struct HoodOnNeckline {
     placed.assign(garment.pieces.size(), false);
     placed[piece_named(garment, "right_ftorso")] = placed[piece_named(garment, "right_btorso")] =
         true;
-    // A seam vertex at a corner between two seams has a partner on each.
-    std::vector<std::vector<int>> partners_of(garment.vertex_count());
-    for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k)
-      for (int side = 0; side < 2; ++side) {
-        const int own = garment.sewing_pairs(k, side), partner = garment.sewing_pairs(k, 1 - side);
-        if (garment.vertex_piece(own) == hood && placed[garment.vertex_piece(partner)])
-          partners_of[own].push_back(partner);
-      }
-    const auto sewn = [&](int v) { return !partners_of[v].empty(); };
-    // The seam: the outline's run of sewn vertices, in outline order (it may wrap past the
-    // outline's first vertex).
-    const std::vector<int>& outline = garment.pieces[hood].outline;
-    const std::size_t n = outline.size();
-    std::size_t first = 0;
-    while (first < n && !(sewn(outline[first]) && !sewn(outline[(first + n - 1) % n])))
-      ++first;
-    std::vector<int> seam;
-    for (std::size_t k = first; sewn(outline[k % n]) && seam.size() < n; ++k)
-      seam.push_back(outline[k % n]);
-    std::vector<double> along{0.0};
-    for (std::size_t k = 1; k < seam.size(); ++k)
-      along.push_back(
-          along.back() +
-          (garment.rest_positions.row(seam[k]) - garment.rest_positions.row(seam[k - 1])).norm());
+    const SewnRun seam = sewn_run(garment, hood, placed);
+    const std::vector<double>& along = seam.along;
     const double radius = along.back() / std::numbers::pi;
-    for (std::size_t k = 0; k < seam.size(); ++k) {
+    for (std::size_t k = 0; k < seam.vertices.size(); ++k) {
       const double angle = std::numbers::pi * along[k] / along.back();
-      for (int partner : partners_of[seam[k]])
+      for (int partner : seam.partners[k])
         positions.row(partner) << -radius * std::sin(angle), kNeckHeight, -radius * std::cos(angle);
     }
   }
@@ -276,7 +431,7 @@ class SeamDrapeTest : public QObject {
     // The seam turns round the body as much as in the pattern: the cone that keeps lengths along
     // it would be flat, and the flare angle caps it.
     const QString failure = check_hanging(disc.garment, disc.skirt, disc.placed, disc.transform,
-                                          settings, disc.positions, flare);
+                                          settings, disc.landmarks, disc.positions, flare);
     QVERIFY2(failure.isEmpty(), qPrintable(failure));
   }
 
@@ -292,31 +447,11 @@ class SeamDrapeTest : public QObject {
     const RigidTransform& transform = disc.transform;
     Eigen::MatrixX3d& positions = disc.positions;
 
-    // The arc's centre from three of its points (the panel's waist is one circle).
-    std::vector<std::pair<int, int>> seam;  // (own, partner)
-    for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k)
-      for (int side = 0; side < 2; ++side) {
-        const int own = garment.sewing_pairs(k, side), partner = garment.sewing_pairs(k, 1 - side);
-        if (garment.vertex_piece(own) == skirt && placed[garment.vertex_piece(partner)])
-          seam.emplace_back(own, partner);
-      }
+    const WaistArc arc = waist_arc(garment, skirt, placed);
+    const std::vector<std::pair<int, int>>& seam = arc.seam;
+    const Eigen::Vector2d& centre = arc.centre;
     QVERIFY(seam.size() > 10);
-    std::sort(seam.begin(), seam.end(), [&](const auto& a, const auto& b) {
-      return garment.rest_positions(a.first, 0) < garment.rest_positions(b.first, 0);
-    });
-    const Eigen::Vector2d p0 = garment.rest_positions.row(seam.front().first);
     const Eigen::Vector2d p1 = garment.rest_positions.row(seam[seam.size() / 2].first);
-    const Eigen::Vector2d p2 = garment.rest_positions.row(seam.back().first);
-    const double d = 2.0 * (p0.x() * (p1.y() - p2.y()) + p1.x() * (p2.y() - p0.y()) +
-                            p2.x() * (p0.y() - p1.y()));
-    QVERIFY(std::abs(d) > 1e-9);
-    const Eigen::Vector2d centre(
-        (p0.squaredNorm() * (p1.y() - p2.y()) + p1.squaredNorm() * (p2.y() - p0.y()) +
-         p2.squaredNorm() * (p0.y() - p1.y())) /
-            d,
-        (p0.squaredNorm() * (p2.x() - p1.x()) + p1.squaredNorm() * (p0.x() - p2.x()) +
-         p2.squaredNorm() * (p1.x() - p0.x())) /
-            d);
     const Eigen::Vector2d middle = p1 - centre;
     const double middle_angle = std::atan2(middle.y(), middle.x());
     constexpr double kTurn = 1.5;
@@ -327,15 +462,13 @@ class SeamDrapeTest : public QObject {
       const double turned = middle_angle + kTurn * angle;
       const Eigen::Vector2d tighter =
           centre + from_centre.norm() / kTurn * Eigen::Vector2d(std::cos(turned), std::sin(turned));
-      positions.row(partner) =
-          (transform.rotation * Eigen::Vector3d(tighter.x(), tighter.y(), 0.0) +
-           transform.translation)
-              .transpose();
+      positions.row(partner) = placed_at(transform, tighter).transpose();
     }
 
+    // The waist keeps its centre, on the torso's axis.
     const SeamDrapeSettings settings;
-    const QString failure = check_hanging(garment, skirt, placed, transform, settings, positions,
-                                          std::asin(1.0 / kTurn));
+    const QString failure = check_hanging(garment, skirt, placed, transform, settings,
+                                          disc.landmarks, positions, std::asin(1.0 / kTurn));
     QVERIFY2(failure.isEmpty(), qPrintable(failure));
   }
 
@@ -352,11 +485,11 @@ class SeamDrapeTest : public QObject {
       double sideways_below;
     };
     const Case cases[] = {
-        {"hanging already",
+        {"hanging already, sideways fits only",
          skirt,
          {"left_btorso", "right_btorso"},
          Eigen::Matrix3d::Identity(),
-         SeamDrapeSettings{}.sideways_below},
+         0.5},
         {"a bodice half, up from its seam",
          bodice,
          {"skirt_back"},
@@ -378,10 +511,66 @@ class SeamDrapeTest : public QObject {
       Eigen::MatrixX3d outsides = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
       SeamDrapeSettings settings;
       settings.sideways_below = test.sideways_below;
-      QVERIFY2(!drape_from_seam(garment, test.piece, placed, transform, settings, kNoRising,
+      const BodyLandmarks landmarks =
+          torso_at(placed_at(transform, waist_arc(garment, test.piece, placed).centre));
+      QVERIFY2(!drape_from_seam(garment, test.piece, placed, transform, settings, landmarks,
                                 positions, outsides),
                test.what);
       QVERIFY2(positions == before && outsides.isZero(), test.what);
+    }
+  }
+
+  // Each of gc_0160's ten panels hangs in the wedge of the axis its own seam spans: none passes
+  // through another or itself, each keeps its seam on its partners and faces out. Their rigid fits
+  // (the flat panels the alignment lays on each short waist) cross each other.
+  void flaredPanelsSideBySideHangApart() {
+    const PanelsRoundWaist scene("patterns/hanging_skirt/gc_0160_specification.json", "skirt_panel",
+                                 "skirt_panel_0");
+    const Garment& garment = scene.garment;
+    QCOMPARE(scene.panels.size(), std::size_t{10});
+    const PieceAligner aligner(garment);
+    Eigen::MatrixX3d rigid = scene.positions, hung = scene.positions;
+    Eigen::MatrixX3d outsides = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
+    const SeamDrapeSettings settings;
+    const BodyLandmarks landmarks = torso_at(Eigen::Vector3d(0.0, kSeamHeight, 0.0));
+    for (int panel : scene.panels) {
+      const RigidTransform transform = aligner.fit(panel, scene.placed, scene.positions);
+      aligner.place(panel, transform, rigid);
+      QVERIFY2(drape_from_seam(garment, panel, scene.placed, transform, settings, landmarks, hung,
+                               outsides),
+               garment.pieces[panel].name.c_str());
+      const StartShape shape =
+          start_shape(garment, panel, scene.placed, scene.positions, hung, outsides);
+      QVERIFY2(shape.worst_gap < 0.005 && shape.turned == 0, garment.pieces[panel].name.c_str());
+    }
+    const std::size_t rigid_contacts = scene.contacts(rigid), hung_contacts = scene.contacts(hung);
+    qInfo("edge-triangle contacts among the panels: rigid fits %zu, hung %zu", rigid_contacts,
+          hung_contacts);
+    QVERIFY(rigid_contacts > 0);
+    QCOMPARE(hung_contacts, std::size_t{0});
+  }
+
+  // Two pieces sewn to each other along two seams make a tube: gc_0068's skirt front and back go
+  // round the whole waist together and hang round the torso; gc_0473's trouser legs' fronts and
+  // backs go round half of it each, round a leg, and are left to the rigid fit, as are its two
+  // backs (and two fronts), sewn down the crotch in two stitches.
+  void tubeRoundALegIsNotHungRoundTheTorso() {
+    const BodyLandmarks landmarks = torso_at(Eigen::Vector3d(0.0, kSeamHeight, 0.0));
+    const RigidTransform identity;
+    for (const auto& [pattern, prefix, first, hung] :
+         {std::tuple{"patterns/hanging_skirt/gc_0068_specification.json", "skirt_", "skirt_front",
+                     true},
+          std::tuple{"patterns/gc_0473_specification.json", "pant_", "pant_f_r", false}}) {
+      const PanelsRoundWaist scene(pattern, prefix, first);
+      const Garment& garment = scene.garment;
+      QVERIFY2(scene.panels.size() == (hung ? 2u : 4u), pattern);
+      for (int panel : scene.panels) {
+        Eigen::MatrixX3d positions = scene.positions;
+        Eigen::MatrixX3d outsides = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
+        const bool draped = drape_from_seam(garment, panel, scene.placed, identity,
+                                            SeamDrapeSettings{}, landmarks, positions, outsides);
+        QVERIFY2(draped == hung, garment.pieces[panel].name.c_str());
+      }
     }
   }
 
@@ -399,7 +588,8 @@ class SeamDrapeTest : public QObject {
     Eigen::MatrixX3d positions = scene.positions;
     Eigen::MatrixX3d outsides = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
     QVERIFY(drape_from_seam(garment, scene.hood, scene.placed, identity, SeamDrapeSettings{},
-                            HoodOnNeckline::kNeckHeight - 0.2, positions, outsides));
+                            torso_at(Eigen::Vector3d::Zero(), HoodOnNeckline::kNeckHeight - 0.2),
+                            positions, outsides));
     const StartShape shape =
         start_shape(garment, scene.hood, scene.placed, scene.positions, positions, outsides);
     QVERIFY(shape.worst_gap < 0.005);
@@ -427,8 +617,8 @@ class SeamDrapeTest : public QObject {
       settings.rising_reach = reach;
       Eigen::MatrixX3d untouched = scene.positions;
       outsides.setZero();
-      QVERIFY(!drape_from_seam(garment, scene.hood, scene.placed, identity, settings, height,
-                               untouched, outsides));
+      QVERIFY(!drape_from_seam(garment, scene.hood, scene.placed, identity, settings,
+                               torso_at(Eigen::Vector3d::Zero(), height), untouched, outsides));
       QVERIFY(untouched == scene.positions && outsides.isZero());
     }
   }
