@@ -73,9 +73,9 @@ struct SeamDrapeSettings {
   double flare_angle = 1.2;
 };
 
-// When `piece` hangs from its seam with the pieces placed[p] and `transform` (its rigid fit) lays
-// it sideways, or rises from a seam above the armpits of `landmarks` (so that pieces rise from
-// the neckline only, not a bodice from a waistband), writes its
+// When `piece` hangs from its seam with the pieces placed[p] round the torso of `landmarks` (its
+// rigid fit `transform` counting as sideways, see sideways_below), or rises from a seam above its
+// armpits (so that pieces rise from the neckline only, not a bodice from a waistband), writes its
 // start into its rows of `positions` and the outside direction of each of its vertices into the
 // same rows of `outsides` (#V×3), and returns true. Else leaves both as they are and returns
 // false.
