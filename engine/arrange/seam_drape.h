@@ -69,8 +69,10 @@ struct SeamDrapeSettings {
   double flat_seam_ratio = 0.5;
   // The largest θ, radians outwards from the vertical (a full circle skirt's cone would be flat).
   // Measured on the 74 circle skirts of the 500 GarmentCode patterns (23 clean with the rigid fit
-  // alone): 1.0 → 24, 1.2 → 26, 1.4 → 25 clean.
-  double flare_angle = 1.2;
+  // alone), hung from normals of the seam: 1.0 → 24, 1.2 → 26, 1.4 → 25 clean. Round the torso's
+  // axis, on the 134 flared skirts (circle, asymmetric circle, godet, many-panel): 1.0 → 88,
+  // 1.2 → 82, 1.4 → 78.
+  double flare_angle = 1.0;
 };
 
 // When `piece` hangs from its seam with the pieces placed[p] round the torso of `landmarks` (its

@@ -222,8 +222,8 @@ class PostProcessTest : public QObject {
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     // gc_0195 (a circle skirt and a straight waistband in two parts) on its body,
     // m_smpl_average_A40: the heavy skirt settling under gravity drags the back of the waistband,
-    // its seed, down and over itself (11 folds in wb_back without the repulsion; with the earlier
-    // start of the skirt it went through itself, 40 cloth edges crossing).
+    // its seed, down and over itself (without the repulsion, 19 folds in the waistband and 3
+    // cloth edges crossing; with the earlier start of the skirt, 46 folds and 40 edges).
     const std::shared_ptr<const Scene> scene =
         load_scene(test::test_data("patterns/gc_0195_specification.json"),
                    test::test_data("bodies/m_smpl_average_A40.obj"));
