@@ -28,6 +28,11 @@ Eigen::Vector2d left_of(const Eigen::Vector2d& tangent) {
   return {-tangent.y(), tangent.x()};
 }
 
+// The angle from `from` to `to`, counter-clockwise positive.
+double signed_angle(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+  return std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
+}
+
 Eigen::Vector3d blend(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double share) {
   return ((1.0 - share) * from + share * to).normalized();
 }
@@ -102,26 +107,29 @@ SeamRun seam_run(const Garment& garment, const Piece& info, const SeamPartners& 
   return run;
 }
 
-// Per seam vertex, the level direction from the torso's axis to it; nothing when one lies on the
-// axis.
-std::optional<std::vector<Eigen::Vector3d>> radial_directions(const SeamRun& run,
-                                                              const BodyAxis& torso) {
-  std::vector<Eigen::Vector3d> radial(run.placed.size());
-  for (std::size_t k = 0; k < run.placed.size(); ++k) {
-    Eigen::Vector3d away = run.placed[k] - axis_at(torso, run.placed[k].y());
+// A piece's seam with the placed pieces seen from the torso's axis: per seam vertex the level
+// direction from the axis to it, and the signed angle those turn through round the vertical.
+struct SeamRoundAxis {
+  SeamRun run;
+  std::vector<Eigen::Vector3d> radial;
+  double turn = 0.0;
+};
+
+// Nothing when the seam has fewer than two vertices or one lies on the axis.
+std::optional<SeamRoundAxis> seam_round_axis(const Garment& garment, int piece,
+                                             const SeamPartners& partners, const BodyAxis& torso) {
+  SeamRoundAxis seam{seam_run(garment, garment.pieces[piece], partners), {}, 0.0};
+  if (seam.run.placed.size() < 2) return std::nullopt;
+  for (const Eigen::Vector3d& point : seam.run.placed) {
+    Eigen::Vector3d away = point - axis_at(torso, point.y());
     away.y() = 0.0;
     if (!(away.norm() > 1e-9)) return std::nullopt;
-    radial[k] = away.normalized();
+    seam.radial.push_back(away.normalized());
   }
-  return radial;
-}
-
-// The signed angle the directions turn through round the vertical, one to the next.
-double turn_round_axis(const std::vector<Eigen::Vector3d>& radial) {
-  double turn = 0.0;
-  for (std::size_t k = 0; k + 1 < radial.size(); ++k)
-    turn += std::atan2(radial[k].cross(radial[k + 1]).y(), radial[k].dot(radial[k + 1]));
-  return turn;
+  for (std::size_t k = 0; k + 1 < seam.radial.size(); ++k)
+    seam.turn += std::atan2(seam.radial[k].cross(seam.radial[k + 1]).y(),
+                            seam.radial[k].dot(seam.radial[k + 1]));
+  return seam;
 }
 
 // Whether `piece` makes a leg's tube: sewn along two seams to another piece that hangs from the
@@ -129,50 +137,41 @@ double turn_round_axis(const std::vector<Eigen::Vector3d>& radial) {
 // round the body (a two-panel skirt's front and back turn 2π round the axis together), one round
 // a leg only its side of it (a trouser leg's front and back, π; the two backs, sewn down the
 // crotch in two stitches, too). Hung round the torso, trousers would start as a skirt: of the
-// trousers of the 500 GarmentCode patterns, 4 were lost so and 2 gained.
-bool makes_leg_tube(const Garment& garment, int piece, const std::vector<bool>& placed,
-                    const Eigen::MatrixX3d& positions, const BodyAxis& torso) {
+// trousers of the 500 GarmentCode patterns, 4 were lost so and 2 gained. own_turn: the turn of
+// the piece's own seam round the axis (SeamRoundAxis).
+bool makes_leg_tube(const Garment& garment, int piece, double own_turn,
+                    const std::vector<bool>& placed, const Eigen::MatrixX3d& positions,
+                    const BodyAxis& torso) {
   std::vector<int> shared_seams(garment.pieces.size(), 0);
   for (const StitchPairs& range : garment.stitches) {
     const Stitch& stitch = garment.pattern.stitches[range.stitch];
     if (stitch.a.panel == piece && stitch.b.panel != piece) ++shared_seams[stitch.b.panel];
     if (stitch.b.panel == piece && stitch.a.panel != piece) ++shared_seams[stitch.a.panel];
   }
-  // The turn of a piece's seam with the placed pieces round the axis; nothing without one.
-  const auto seam_turn = [&](int of) -> std::optional<double> {
-    const SeamRun run =
-        seam_run(garment, garment.pieces[of], seam_partners(garment, of, placed, positions));
-    const auto radial = radial_directions(run, torso);
-    if (run.placed.size() < 2 || !radial) return std::nullopt;
-    return turn_round_axis(*radial);
-  };
-  const std::optional<double> own_turn = seam_turn(piece);
-  if (!own_turn) return false;
   for (int other = 0; other < static_cast<int>(garment.pieces.size()); ++other) {
     if (other == piece || shared_seams[other] < 2 || placed[other]) continue;
-    const std::optional<double> other_turn = seam_turn(other);
+    const std::optional<SeamRoundAxis> other_seam =
+        seam_round_axis(garment, other, seam_partners(garment, other, placed, positions), torso);
     // Half way between a leg's π and the torso's 2π.
-    if (other_turn && std::abs(*own_turn + *other_turn) < 1.5 * std::numbers::pi) return true;
+    if (other_seam && std::abs(own_turn + other_seam->turn) < 1.5 * std::numbers::pi) return true;
   }
   return false;
 }
 
-// A hanging piece as a cone round the torso's axis (see the header): returns false, leaving
-// positions and outsides as they are, when its outside would face the axis.
-bool hang_round_torso(const Garment& garment, int piece, const SeamPartners& partners,
-                      const SeamDrapeSettings& settings, const BodyAxis& torso,
-                      Eigen::MatrixX3d& positions, Eigen::MatrixX3d& outsides) {
+// A hanging piece as a cone round the torso's axis (see the header), from its seam seen from the
+// axis: returns false, leaving positions and outsides as they are, when its outside would face
+// the axis.
+bool hang_round_torso(const Garment& garment, int piece, const SeamRoundAxis& seam,
+                      const SeamDrapeSettings& settings, Eigen::MatrixX3d& positions,
+                      Eigen::MatrixX3d& outsides) {
   const Piece& info = garment.pieces[piece];
-  const SeamRun run = seam_run(garment, info, partners);
+  const SeamRun& run = seam.run;
+  const std::vector<Eigen::Vector3d>& radial = seam.radial;
   const std::size_t m = run.rest.size();
-  if (m < 2 || !(run.along.back() > 0.0)) return false;
+  if (!(run.along.back() > 0.0)) return false;
   const double length = run.along.back();
+  const double turn_round_body = seam.turn;
 
-  // Away from the axis at each seam vertex, level, and how far the seam turns round it.
-  const std::optional<std::vector<Eigen::Vector3d>> radial_or = radial_directions(run, torso);
-  if (!radial_or) return false;
-  const std::vector<Eigen::Vector3d>& radial = *radial_or;
-  const double turn_round_body = turn_round_axis(radial);
   double facing = 0.0;
   for (std::size_t k = 0; k + 1 < m; ++k)
     // The hanging surface's normal T × D with D straight down: outwards when the seam runs round
@@ -187,9 +186,6 @@ bool hang_round_torso(const Garment& garment, int piece, const SeamPartners& par
   // corner; past the seam's ends, on along their tangents.
   const auto tangent = [&](std::size_t k) -> Eigen::Vector2d {
     return (run.rest[k + 1] - run.rest[k]).normalized();
-  };
-  const auto signed_angle = [](const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
-    return std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
   };
   // gained[k]: the turn away from the piece from the seam's start to segment k (the piece is on
   // the left, so a clockwise turn).
@@ -360,10 +356,13 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
   const Eigen::Vector3d seam_size = seam_upper - seam_lower;
   if (seam_size.y() > settings.flat_seam_ratio * std::hypot(seam_size.x(), seam_size.z()))
     return false;
-  if (hangs)
-    return !makes_leg_tube(garment, piece, placed, positions, landmarks.torso) &&
-           hang_round_torso(garment, piece, partners, settings, landmarks.torso, positions,
-                            outsides);
+  if (hangs) {
+    const std::optional<SeamRoundAxis> seam =
+        seam_round_axis(garment, piece, partners, landmarks.torso);
+    return seam &&
+           !makes_leg_tube(garment, piece, seam->turn, placed, positions, landmarks.torso) &&
+           hang_round_torso(garment, piece, *seam, settings, positions, outsides);
+  }
 
   const Eigen::Vector3d world_away = Eigen::Vector3d::UnitY();
   double outwards = 0.0;
@@ -373,13 +372,10 @@ bool drape_from_seam(const Garment& garment, int piece, const std::vector<bool>&
   for (const SeamSegment& segment : segments) {
     if (segment.next < 0) continue;
     const SeamSegment& next = segments[segment.next];
-    turn_in_pattern +=
-        std::atan2(segment.tangent.x() * next.tangent.y() - segment.tangent.y() * next.tangent.x(),
-                   segment.tangent.dot(next.tangent));
+    turn_in_pattern += signed_angle(segment.tangent, next.tangent);
     const Eigen::Vector2d from(segment.along.x(), segment.along.z());
     const Eigen::Vector2d to(next.along.x(), next.along.z());
-    if (from.norm() > 1e-9 && to.norm() > 1e-9)
-      turn_round_body += std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
+    if (from.norm() > 1e-9 && to.norm() > 1e-9) turn_round_body += signed_angle(from, to);
   }
   const double flare = std::abs(turn_in_pattern) < std::abs(turn_round_body)
                            ? std::min(settings.flare_angle, std::asin(std::abs(turn_in_pattern) /
