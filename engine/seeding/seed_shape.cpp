@@ -19,6 +19,7 @@
 #include "engine/energy/sewing_potential.h"
 #include "engine/energy/stretch_potential.h"
 #include "engine/energy/upward_potential.h"
+#include "engine/quality/expected_region.h"
 #include "engine/seeding/seed_layout.h"
 #include "engine/solver/chebyshev_solver.h"
 
@@ -43,6 +44,19 @@ double front_score(const Scene& scene, int piece, const std::vector<int>& part) 
     }
   }
   return score;
+}
+
+// +1 for a piece named for the front, −1 for the back, 0 otherwise (expected_region.h).
+double named_front_score(const Garment& garment, int piece) {
+  switch (expected_region_from_name(garment.pieces[piece].name).front_back) {
+    case FrontBack::Front:
+      return 1.0;
+    case FrontBack::Back:
+      return -1.0;
+    case FrontBack::Any:
+      return 0.0;
+  }
+  return 0.0;
 }
 
 // An ellipse x(θ) = a sinθ · across + b cosθ · normal around a torso, walked by arc length: front
@@ -198,12 +212,19 @@ void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double dis
       // The front is the mean direction of the pieces round the axis, each weighted by how much
       // its sewn neighbours say "front" (back pieces push it away): the seam between the two
       // front pieces of a four-piece collar faces the front, not one of them. Without such
-      // neighbours, the middle of the part does.
+      // neighbours, the middle of the part does. A part whose own pieces are named for their
+      // sides is believed over the neighbours, as the seed choice believes names over the
+      // classifier (seed_choice.cpp): a many-panel skirt's unnamed panels, which the classifier
+      // takes for front and back alike, turned wb_front and wb_back of its waistband round.
+      bool named = false;
+      for (int piece : part.pieces)
+        named = named || named_front_score(garment, piece) != 0.0;
       double front_arc = layout.box.centre().x();
       Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
       double total_score = 0.0;
       for (std::size_t i = 0; i < layout.pieces.size(); ++i) {
-        const double score = front_score(scene, layout.pieces[i], part.pieces);
+        const double score = named ? named_front_score(garment, layout.pieces[i])
+                                   : front_score(scene, layout.pieces[i], part.pieces);
         const double arc = rest_box(garment, layout.pieces[i]).centre().x() + layout.offsets[i].x();
         const double angle = arc_scale * arc / radius;
         resultant += score * Eigen::Vector2d(std::cos(angle), std::sin(angle));

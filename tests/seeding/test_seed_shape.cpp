@@ -376,6 +376,33 @@ class SeedShapeTest : public QObject {
     }
   }
 
+  // gc_0432 (a skirt of 13 panels named skirt_panel_<N> under a waistband of wb_front and
+  // wb_back, made for mean_all): its automatic seed is the waistband, and the classifier takes
+  // the unnamed panels sewn to it for front and back alike. The band starts wrapped round the
+  // waist with wb_front in front of the body (+z) and wb_back behind, measured at each piece's
+  // area centroid against the waist location's centre. It started turned round (both pieces
+  // misplaced in the quality report) while the neighbours alone decided.
+  void named_waistband_starts_facing_its_sides() {
+    const auto [garment, scene, plan] =
+        seeded("mean_all", "patterns/named_waistband/gc_0432_specification.json");
+    QCOMPARE(plan.parts.size(), std::size_t(1));
+    QCOMPARE(plan.parts.front().location, std::string("waist"));
+    Eigen::MatrixX3d positions = scene->initial_positions;
+    place_seed_on_surfaces(*scene, plan, ArrangementParameters().energy.body_distance, positions);
+    const Eigen::MatrixX3d centroids = piece_centroids(*garment, positions);
+    const Eigen::Vector3d waist = scene->body->location("waist").center;
+    QStringList placed;
+    for (int piece : plan.parts.front().pieces) {
+      const std::string& name = garment->pieces[piece].name;
+      const double depth = centroids(piece, 2) - waist.z();
+      qInfo("%s at z %+.1f cm from the waist's centre", name.c_str(), 100.0 * depth);
+      placed << QString::fromStdString(name);
+      QVERIFY2((name == "wb_front") == (depth > 0.0), name.c_str());
+    }
+    placed.sort();
+    QCOMPARE(placed, (QStringList{"wb_back", "wb_front"}));
+  }
+
   // gc_0097's bodice wrapped round mean_all starts with an armhole corner in the arm and ends
   // stretched round it (about 190 %, measured before the fallback existed): the seed is shaped
   // again from the next start, and what is kept stretches no edge by more than half its rest
