@@ -14,7 +14,8 @@
 // hung), when it would go up from its seam (a
 // bodice half on the skirt), when hung it would face the body (the disc's outside down), or when
 // the option is off. The ten flared panels of gc_0160's skirt, hung side by side from a round
-// waist, start clear of each other; trouser legs are not hung round the torso.
+// waist, start clear of each other, as do gc_0081's darted pencil skirt front and back; trouser
+// legs are not hung round the torso.
 
 #include <QtTest>
 
@@ -269,10 +270,12 @@ QString check_hanging(const Garment& garment, int piece, const std::vector<bool>
 // stretch not sewn to them to the last vertex sewn to them, in outline order (it may wrap past the
 // outline's first vertex; a dart in a waist is a stretch inside it), each vertex with its partners
 // (none off the seam, one on each of two seams at a corner) and its arc length from the start.
+// `sewn_along` counts only the steps between sewn vertices: a placed garment's partners of a
+// dart's two sides lie together, the dart closed.
 struct SewnRun {
   std::vector<int> vertices;
   std::vector<std::vector<int>> partners;
-  std::vector<double> along;
+  std::vector<double> along, sewn_along;
 };
 
 SewnRun sewn_run(const Garment& garment, int piece, const std::vector<bool>& placed) {
@@ -311,6 +314,9 @@ SewnRun sewn_run(const Garment& garment, int piece, const std::vector<bool>& pla
   if (first == n) return run;
   for (std::size_t k = first; run.vertices.empty() || (k - 1) % n != last % n; ++k) {
     run.along.push_back(run.vertices.empty() ? 0.0 : run.along.back() + step(k - 1));
+    run.sewn_along.push_back(run.vertices.empty()     ? 0.0
+                             : sewn(k) && sewn(k - 1) ? run.sewn_along.back() + step(k - 1)
+                                                      : run.sewn_along.back());
     run.vertices.push_back(outline[k % n]);
     run.partners.push_back(partners_of[outline[k % n]]);
   }
@@ -319,9 +325,9 @@ SewnRun sewn_run(const Garment& garment, int piece, const std::vector<bool>& pla
 
 // Panels sewn side by side round a waist (their names start with `prefix`; the rest of the
 // garment is placed): their seams with the placed pieces laid one after the other round a level
-// circle as long as all of them together, 1.1 m up round the torso's axis (x = z = 0), from
-// `first` in the order their seams join them, the way each outline runs (the panels' outsides,
-// +z in the pattern, then face out).
+// circle as long as all of them together (darts closed), 1.1 m up round the torso's axis (x = z =
+// 0), from `first` in the order their seams join them, the way each outline runs (the panels'
+// outsides, +z in the pattern, then face out).
 struct PanelsRoundWaist {
   Garment garment;
   std::vector<int> panels;  // in order round the waist
@@ -355,17 +361,17 @@ struct PanelsRoundWaist {
     }
     double waist = 0.0;
     for (int panel : panels)
-      waist += runs[panel].along.empty() ? 0.0 : runs[panel].along.back();
+      waist += runs[panel].sewn_along.empty() ? 0.0 : runs[panel].sewn_along.back();
     const double radius = waist / (2.0 * std::numbers::pi);
     double so_far = 0.0;
     for (int panel : panels) {
       const SewnRun& run = runs[panel];
       for (std::size_t k = 0; k < run.vertices.size(); ++k) {
-        const double angle = 2.0 * std::numbers::pi * (so_far + run.along[k]) / waist;
+        const double angle = 2.0 * std::numbers::pi * (so_far + run.sewn_along[k]) / waist;
         for (int partner : run.partners[k])
           positions.row(partner) << radius * std::cos(angle), kSeamHeight, radius * std::sin(angle);
       }
-      so_far += run.along.back();
+      so_far += run.sewn_along.back();
     }
   }
 
@@ -548,6 +554,36 @@ class SeamDrapeTest : public QObject {
           hung_contacts);
     QVERIFY(rigid_contacts > 0);
     QCOMPARE(hung_contacts, std::size_t{0});
+  }
+
+  // gc_0081's pencil skirt: a front and a back, each with two 12 cm darts in its waist (and the
+  // front a 40 cm slit in its hem), hung from a shirt's hem laid round a waist, darts closed. Each
+  // keeps its seam on its partners with no triangle turned, and neither passes through itself or
+  // the other. By the pattern's arc length round the seam, the strip below each dart's mouth
+  // hung as one line down to the hem; walking the darts as part of the seam put vertices 15 cm
+  // below the waist 3 cm from it.
+  void dartedPanelsHangClearOfThemselves() {
+    const PanelsRoundWaist scene("patterns/hanging_skirt/gc_0081_specification.json", "skirt_",
+                                 "skirt_front");
+    const Garment& garment = scene.garment;
+    QCOMPARE(scene.panels.size(), std::size_t{2});
+    const BodyLandmarks landmarks = torso_at(Eigen::Vector3d(0.0, kSeamHeight, 0.0));
+    const RigidTransform identity;
+    Eigen::MatrixX3d hung = scene.positions;
+    Eigen::MatrixX3d outsides = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
+    for (int panel : scene.panels) {
+      QVERIFY2(drape_from_seam(garment, panel, scene.placed, identity, SeamDrapeSettings{},
+                               landmarks, hung, outsides),
+               garment.pieces[panel].name.c_str());
+      const StartShape shape =
+          start_shape(garment, panel, scene.placed, scene.positions, hung, outsides);
+      qInfo("%s: gap %.4f turned %d stretch %.3f", garment.pieces[panel].name.c_str(),
+            shape.worst_gap, shape.turned, shape.worst_stretch);
+      QVERIFY2(shape.worst_gap < 0.005 && shape.turned == 0, garment.pieces[panel].name.c_str());
+    }
+    const std::size_t contacts = scene.contacts(hung);
+    qInfo("edge-triangle contacts in the hung skirt: %zu", contacts);
+    QCOMPARE(contacts, std::size_t{0});
   }
 
   // Two pieces sewn to each other along two seams make a tube: gc_0068's skirt front and back go
