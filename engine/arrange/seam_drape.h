@@ -16,15 +16,18 @@
 // outline needs below 2 cm). A vertex goes to
 //   x = X(σ) + d·(cos θ·down + sin θ·R(σ)),   σ = L·(c − a·d) / (L + (b − a)·d),
 // X the seam's placed partners (by arc length) and R the level direction from the torso's axis
-// through X. θ is the flare of the cone whose development keeps lengths round it: its rows widen
-// by (b − a) per metre and the cone's by sin θ times the seam's turn round the axis; at most
-// `flare_angle`, a fuller piece starting with its hem compressed, which the stretch model lets
-// buckle (energy_parameters.h, stretch_compression_factor). So each piece keeps to the wedge of
-// the axis its own seam spans, and panels side by side round a waist start apart; directions
-// from the axis never meet, where normals of the seam would at its hollows (the small of the
-// back, under a bust) and fold the piece through itself. A piece that makes a tube round a leg
-// with another (a trouser leg's front and back, sewn along two seams and going half round the
-// axis together) is left to the rigid fit: hung round the torso, trousers would start as a skirt.
+// through X. A dart in the seam is crossed by its mouth, closed as in the garment; below such a
+// seam, rows go round the placed seam evenly by its own arc length (5 cm down and deeper), or
+// the cloth below a closed mouth would hang as one line. θ is the flare of the cone whose
+// development keeps lengths round it: its rows widen by (b − a) per metre and the cone's by sin θ
+// times the seam's turn round the axis; at most `flare_angle`, a fuller piece starting with its hem
+// compressed, which the stretch model lets buckle (energy_parameters.h,
+// stretch_compression_factor). So each piece keeps to the wedge of the axis its own seam spans, and
+// panels side by side round a waist start apart; directions from the axis never meet, where normals
+// of the seam would at its hollows (the small of the back, under a bust) and fold the piece through
+// itself. A piece that makes a tube round a leg with another (a trouser leg's front and back, sewn
+// along two seams and going half round the axis together) is left to the rigid fit: hung round the
+// torso, trousers would start as a skirt.
 //
 // Rising: each vertex from the point of the seam nearest to it in the pattern:
 //   - beside a segment of the seam: x = X(s) + d·D, d its distance from the seam;
