@@ -335,13 +335,19 @@ SolveReport solve_seed_shape(const Scene& scene, const SeedPlan& plan,
       seed_vertices.push_back(v);
   }
   active.set_role(seed_vertices, VertexRole::Free);
-  // The body distance draws cloth to the body above the crotch only: below it, a skirt's front and
-  // back were drawn into the gap between the legs, where they met and crossed (gc_0109: 42
-  // edge-triangle contacts between its seed pieces 25 to 33 cm below the crotch; none now).
-  // Of the 55 GarmentCode patterns seeded at the pelvis (skirts and trousers), 46 → 48 clean.
+  // The body distance draws a piece to the body below the crotch only if the piece is named for
+  // a side of the body (a trouser leg: a leg is there to draw it to). Drawn there, a skirt's
+  // front and back met in the gap between the legs and crossed (gc_0109: 42 edge-triangle
+  // contacts between its seed pieces 25 to 33 cm below the crotch; none now); trousers left
+  // undrawn there pressed their legs through the body (pants__pants_straight_sides). Of the 55
+  // GarmentCode patterns seeded at the pelvis (skirts and trousers), 46 → 48 clean.
   std::vector<int> attracted;
-  for (int v : seed_vertices)
-    if (positions(v, 1) >= scene.body->landmarks.crotch) attracted.push_back(v);
+  for (int piece : plan.pieces()) {
+    const Piece& info = garment.pieces[piece];
+    const bool leg = expected_region_from_name(info.name).left_right != LeftRight::Any;
+    for (int v = info.first_vertex; v < info.first_vertex + info.vertex_count; ++v)
+      if (leg || positions(v, 1) >= scene.body->landmarks.crotch) attracted.push_back(v);
+  }
   Objective objective(active);
   std::vector<BendingStencil> stencils = interior_bending_stencils(garment);
   const std::vector<BendingStencil> seam = seam_bending_stencils(garment);

@@ -405,8 +405,9 @@ class SeedShapeTest : public QObject {
   }
 
   // gc_0109 (a skirt whose front and back each hold two godets, made for mean_all) is seeded as
-  // its front and back at the pelvis. Below the crotch no body lies between the legs: drawn to
-  // the body there, the two met in the gap and crossed, 25 to 33 cm below the crotch (42 edges
+  // its front and back at the pelvis, pieces not named for a side of the body (no trouser legs).
+  // Below the crotch no body lies between the legs: drawn to the body there, the two met in the
+  // gap and crossed, 25 to 33 cm below the crotch (42 edges
   // of one through triangles of the other). Shaped, the seed pieces have no cloth-cloth contact
   // below the crotch (exact edge-triangle tests, seams welded).
   void skirt_seed_stays_out_of_the_gap_between_the_legs() {
