@@ -216,15 +216,17 @@ void place_seed_on_surfaces(const Scene& scene, const SeedPlan& plan, double dis
       // sides is believed over the neighbours, as the seed choice believes names over the
       // classifier (seed_choice.cpp): a many-panel skirt's unnamed panels, which the classifier
       // takes for front and back alike, turned wb_front and wb_back of its waistband round.
-      bool named = false;
-      for (int piece : part.pieces)
-        named = named || named_front_score(garment, piece) != 0.0;
+      std::vector<double> named_scores;
+      for (int piece : layout.pieces)
+        named_scores.push_back(named_front_score(garment, piece));
+      const bool named = std::any_of(named_scores.begin(), named_scores.end(),
+                                     [](double score) { return score != 0.0; });
       double front_arc = layout.box.centre().x();
       Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
       double total_score = 0.0;
       for (std::size_t i = 0; i < layout.pieces.size(); ++i) {
-        const double score = named ? named_front_score(garment, layout.pieces[i])
-                                   : front_score(scene, layout.pieces[i], part.pieces);
+        const double score =
+            named ? named_scores[i] : front_score(scene, layout.pieces[i], part.pieces);
         const double arc = rest_box(garment, layout.pieces[i]).centre().x() + layout.offsets[i].x();
         const double angle = arc_scale * arc / radius;
         resultant += score * Eigen::Vector2d(std::cos(angle), std::sin(angle));
@@ -328,26 +330,22 @@ SolveReport solve_seed_shape(const Scene& scene, const SeedPlan& plan,
                              const SeedShapeOptions& options) {
   const Garment& garment = *scene.garment;
   ActiveSet active(garment.vertex_count(), VertexRole::Outside);
-  std::vector<int> seed_vertices;
-  for (int piece : plan.pieces()) {
-    const Piece& info = garment.pieces[piece];
-    for (int v = info.first_vertex; v < info.first_vertex + info.vertex_count; ++v)
-      seed_vertices.push_back(v);
-  }
-  active.set_role(seed_vertices, VertexRole::Free);
   // The body distance draws a piece to the body below the crotch only if the piece is named for
   // a side of the body (a trouser leg: a leg is there to draw it to). Drawn there, a skirt's
   // front and back met in the gap between the legs and crossed (gc_0109: 42 edge-triangle
   // contacts between its seed pieces 25 to 33 cm below the crotch; none now); trousers left
   // undrawn there pressed their legs through the body (pants__pants_straight_sides). Of the 55
   // GarmentCode patterns seeded at the pelvis (skirts and trousers), 46 → 48 clean.
-  std::vector<int> attracted;
+  std::vector<int> seed_vertices, attracted;
   for (int piece : plan.pieces()) {
     const Piece& info = garment.pieces[piece];
     const bool leg = expected_region_from_name(info.name).left_right != LeftRight::Any;
-    for (int v = info.first_vertex; v < info.first_vertex + info.vertex_count; ++v)
+    for (int v = info.first_vertex; v < info.first_vertex + info.vertex_count; ++v) {
+      seed_vertices.push_back(v);
       if (leg || positions(v, 1) >= scene.body->landmarks.crotch) attracted.push_back(v);
+    }
   }
+  active.set_role(seed_vertices, VertexRole::Free);
   Objective objective(active);
   std::vector<BendingStencil> stencils = interior_bending_stencils(garment);
   const std::vector<BendingStencil> seam = seam_bending_stencils(garment);
