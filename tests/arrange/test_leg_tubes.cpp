@@ -5,11 +5,19 @@
 //     function reads from positions alone;
 //   - the same with the right leg pushed 4 cm across the plane of symmetry, as a wide leg
 //     arranged over the other one: the sides stay;
+//   - the same with the crotch put just above where the legs part (the lowest crotch seam pair
+//     below which no seam joins the two legs): the tubes reach up to within a centimetre of it,
+//     where a search in coarse steps stopped up to a step lower and left the two legs' inner
+//     cloth next to the crotch without the barrier (gc_0103, gc_0312, gc_0418 crossed there);
 //   - one leg only, and a pencil skirt (gc_0000: at every level its front reaches round both
 //     legs, and below the back's slit the two halves of the back lie behind the legs only): no
 //     tubes.
 
 #include <QtTest>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "engine/arrange/garment_graph.h"
 #include "engine/arrange/leg_tubes.h"
@@ -106,6 +114,36 @@ class LegTubesTest : public QObject {
       right_only[p] = ends_with(garment.pieces[p].name, "_r");
     QVERIFY(
         find_leg_tubes(garment, graph, right_only, positions, body(), search()).vertices.empty());
+  }
+
+  void tubesReachUpToWhereTheLegsPart() {
+    const Garment garment = load_garment("gc_0005_specification.json");
+    const GarmentGraph graph(garment);
+    const Eigen::MatrixX3d positions = flat_placement(garment);
+    // Cloth below a level falls apart into one piece per leg once the level is below both ends
+    // of every pair sewing a right piece to a left one.
+    double parting = std::numeric_limits<double>::infinity();
+    for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
+      const int a = garment.sewing_pairs(k, 0), b = garment.sewing_pairs(k, 1);
+      const std::string& name_a = garment.pieces[garment.vertex_piece(a)].name;
+      const std::string& name_b = garment.pieces[garment.vertex_piece(b)].name;
+      if (ends_with(name_a, "_r") != ends_with(name_b, "_r"))
+        parting = std::min(parting, std::max(positions(a, 1), positions(b, 1)));
+    }
+    QVERIFY(std::isfinite(parting));
+
+    BodyLandmarks landmarks = body();
+    // The first level tried is a millimetre above the parting: the legs are still joined there.
+    landmarks.crotch = parting + kClearance + 0.001;
+    const std::vector<bool> all(garment.pieces.size(), true);
+    const LegTubes tubes = find_leg_tubes(garment, graph, all, positions, landmarks, search());
+    QVERIFY(!tubes.vertices.empty());
+    double highest = -std::numeric_limits<double>::infinity();
+    for (int v : tubes.vertices)
+      highest = std::max(highest, positions(v, 1));
+    qInfo("legs part at y = %.3f m; highest tube vertex %.3f m", parting, highest);
+    QVERIFY(highest < parting);
+    QVERIFY2(highest > parting - 0.01, "the tubes should reach up to where the legs part");
   }
 
   void skirtHasNoTubes() {
