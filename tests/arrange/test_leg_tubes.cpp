@@ -5,10 +5,11 @@
 //     function reads from positions alone;
 //   - the same with the right leg pushed 4 cm across the plane of symmetry, as a wide leg
 //     arranged over the other one: the sides stay;
-//   - the same with the crotch put just above where the legs part (the lowest crotch seam pair
-//     below which no seam joins the two legs): the tubes reach up to within a centimetre of it,
-//     where a search in coarse steps stopped up to a step lower and left the two legs' inner
-//     cloth next to the crotch without the barrier (gc_0103, gc_0312, gc_0418 crossed there);
+//   - the same with the crotch put just above where the legs part (the height below which no
+//     pair sewing a right piece to a left one has both ends): the tubes reach to within a
+//     centimetre of it, where a search in coarse steps stopped up to a step lower and left the
+//     two legs' inner cloth next to the crotch without the barrier (gc_0103, 0312, 0418 crossed
+//     there);
 //   - one leg only, and a pencil skirt (gc_0000: at every level its front reaches round both
 //     legs, and below the back's slit the two halves of the back lie behind the legs only): no
 //     tubes.
@@ -127,7 +128,8 @@ class LegTubesTest : public QObject {
       const int a = garment.sewing_pairs(k, 0), b = garment.sewing_pairs(k, 1);
       const std::string& name_a = garment.pieces[garment.vertex_piece(a)].name;
       const std::string& name_b = garment.pieces[garment.vertex_piece(b)].name;
-      if (ends_with(name_a, "_r") != ends_with(name_b, "_r"))
+      if ((ends_with(name_a, "_r") && ends_with(name_b, "_l")) ||
+          (ends_with(name_a, "_l") && ends_with(name_b, "_r")))
         parting = std::min(parting, std::max(positions(a, 1), positions(b, 1)));
     }
     QVERIFY(std::isfinite(parting));
