@@ -117,21 +117,23 @@ int seed_command(const std::vector<std::string>& args) {
       build_garment(load_pattern(pattern_path), scene_options.meshing));
   const PieceClassification classification = classifier.classify(*garment);
 
+  // The body is loaded when given (so that a bad one is reported) or needed: for the shape, or
+  // for the automatic seed, which measures the garment against it (a hem band is no waistband).
+  const auto output = line.value("-o");
+  const bool manual = line.has("--seed-pieces");
+  std::shared_ptr<const Body> body;
+  if (output || line.has("--body") || !manual)
+    body = std::make_shared<const Body>(
+        load_body(line.value("--body").value_or(default_body_path().string())));
+
   SeedPlan plan;
-  if (line.has("--seed-pieces")) {
+  if (manual) {
     const std::vector<std::string> locations(kBodyLocationNames.begin(), kBodyLocationNames.end());
     plan = manual_seed(*garment, line.list("--seed-pieces"), *line.value("--seed-location"),
                        locations);
   } else {
-    plan = choose_seed(*garment, classification);
+    plan = choose_seed(*garment, classification, body->landmarks.neck - body->landmarks.waist);
   }
-
-  // The body is loaded when given (so that a bad one is reported) or needed for the shape.
-  const auto output = line.value("-o");
-  std::shared_ptr<const Body> body;
-  if (output || line.has("--body"))
-    body = std::make_shared<const Body>(
-        load_body(line.value("--body").value_or(default_body_path().string())));
   SeedShapeReport shaped;
   if (output) {
     const std::shared_ptr<const Scene> scene = make_scene(garment, body, scene_options);

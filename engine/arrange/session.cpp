@@ -58,7 +58,8 @@ Session::Session(std::shared_ptr<const Scene> scene, SessionOptions options)
                                                   options_.arrangement);
   selector_ = std::make_unique<Selector>(garment, options_.arrangement.selection);
   termination_ = std::make_unique<TerminationCheck>(garment);
-  automatic_seed_ = choose_seed(garment, scene_->classification);
+  const BodyLandmarks& landmarks = scene_->body->landmarks;
+  automatic_seed_ = choose_seed(garment, scene_->classification, landmarks.neck - landmarks.waist);
   state_.positions = scene_->initial_positions;
   state_.arranged.assign(garment.pieces.size(), false);
   state_.pieces.assign(garment.pieces.size(), PieceState::Waiting);

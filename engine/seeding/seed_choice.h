@@ -1,7 +1,8 @@
 #pragma once
 // The seed (paper §5): the piece(s) arranged first and the body location each goes to. Automatic:
 // the waist piece (with the pieces of its kind sewn to it: a waistband in two) when some of these
-// close into a ring round the body, else the chest pieces (front and back), else the neck piece (a
+// close into a ring round the body (and is no long top's hem band: its chest pieces are measured
+// against the body), else the chest pieces (front and back), else the neck piece (a
 // collar ring, likewise), else the pelvis pieces (front and back, for skirts and trousers without
 // a waistband; when the classifier finds one side only, the other is the piece sewn to it that is
 // named for that side or that it ranks highest for it), else a rule: the piece with the most
@@ -33,7 +34,10 @@ struct SeedPlan {
   std::vector<int> pieces() const;  // of all parts, in order
 };
 
-SeedPlan choose_seed(const Garment& garment, const PieceClassification& classification);
+// waist_to_neck: the body's height from waist to neck base (BodyLandmarks), in metres, to tell a
+// long top's hem band from a waistband; 0 when there is no body to tell by.
+SeedPlan choose_seed(const Garment& garment, const PieceClassification& classification,
+                     double waist_to_neck = 0.0);
 
 // A manual seed from piece names and a location name; throws InputError naming the unknown piece
 // or location (known_locations lists the valid names).

@@ -5,7 +5,8 @@
 // classifier puts on one side is split into front and back (when it gives the other side a real
 // chance, or cannot tell the two apart), a side found alone takes the piece sewn to it that is
 // most probably the other side, names that say a side overrule the classifier's side (and bring
-// in a piece the classifier nearly put in the region), the halves
+// in a piece the classifier nearly put in the region), a waistband sewn to chest pieces that reach
+// too far from it for the body is passed over as a long top's hem band, the halves
 // of an open front named left and right make one part, and without any seed class the rule picks
 // the piece with the most garment below its seams.
 
@@ -178,6 +179,21 @@ class SeedChoiceTest : public QObject {
                                                     {{SeedClass::Waist, 0.6}},
                                                     {{SeedClass::Waist, 0.5}}}));
     QCOMPARE(parts_of(plan), (Parts{{"waist", {2, 3}}}));
+  }
+
+  // Measured against a body, a ring whose chest pieces reach far from it is a long top's hem band:
+  // the chest pieces (60 cm from the band's seam) are the seed on a body 25 cm from waist to neck
+  // (the limit is twice that), the band on one of 35 cm.
+  void hemBandOfALongTopGivesWayToChestPieces() {
+    const PieceClassification classes = classification({{{SeedClass::FrontChest, 0.9}},
+                                                        {{SeedClass::BackChest, 0.9}},
+                                                        {{SeedClass::Waist, 0.6}},
+                                                        {{SeedClass::Waist, 0.5}}});
+    const SeedPlan long_top = choose_seed(banded_skirt(), classes, 0.25);
+    QCOMPARE(parts_of(long_top), (Parts{{"chest_front", {0}}, {"chest_back", {1}}}));
+    QCOMPARE(long_top.reason,
+             std::string("chest pieces (classifier; the waist piece is a long top's hem band)"));
+    QCOMPARE(parts_of(choose_seed(banded_skirt(), classes, 0.35)), (Parts{{"waist", {2, 3}}}));
   }
 
   void frontAndBackGoToTheirLocations() {

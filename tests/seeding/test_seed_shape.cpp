@@ -227,7 +227,8 @@ class SeedShapeTest : public QObject {
     auto garment =
         std::make_shared<const Garment>(build_garment(load_pattern(test::test_data(pattern))));
     std::shared_ptr<const Scene> scene = make_scene(garment, load(body));
-    SeedPlan plan = choose_seed(*garment, scene->classification);
+    const BodyLandmarks& landmarks = scene->body->landmarks;
+    SeedPlan plan = choose_seed(*garment, scene->classification, landmarks.neck - landmarks.waist);
     return {std::move(garment), std::move(scene), std::move(plan)};
   }
 
@@ -402,6 +403,23 @@ class SeedShapeTest : public QObject {
     }
     placed.sort();
     QCOMPARE(placed, (QStringList{"wb_back", "wb_front"}));
+  }
+
+  // gc_0276 (a sleeveless top with a straight waistband, made for m_smpl_average_A40) is a long
+  // top: its torso pieces are 1.06 m tall, the band sewn to their hem. The classifier takes the
+  // band for a waist piece, but on the body it cannot be at the waist, 0.365 m below the neck:
+  // the chest pieces are the seed. Without a body to measure against, the band would be. gc_0299
+  // (the same kind of top, 0.49 m tall, made for mean_all) keeps its band at the waist.
+  void long_tops_hem_band_is_no_waist_seed() {
+    const auto [garment, scene, plan] =
+        seeded("m_smpl_average_A40", "patterns/hem_band/gc_0276_specification.json");
+    QCOMPARE(part_list(*garment, plan), std::string("right_ftorso+left_ftorso -> chest_front, "
+                                                    "right_btorso+left_btorso -> chest_back"));
+    QCOMPARE(part_list(*garment, choose_seed(*garment, scene->classification)),
+             std::string("wb_back+wb_front -> waist"));
+    const auto [short_top, short_scene, short_plan] =
+        seeded("mean_all", "patterns/hem_band/gc_0299_specification.json");
+    QCOMPARE(part_list(*short_top, short_plan), std::string("wb_back+wb_front -> waist"));
   }
 
   // gc_0109 (a skirt whose front and back each hold two godets, made for mean_all) is seeded as
