@@ -94,6 +94,19 @@ std::vector<Candidate> Selector::candidates(const std::vector<bool>& arranged,
       }
     }
   }
+  // Two candidates sewn to each other by two or more seams close into a tube between them (the
+  // front and back of a trouser leg, at its outer and inner seams): half a tube has nothing to
+  // hold it round the limb or body, and arranged alone it stands off as a flap, which the other
+  // half, arranged next, must then be pulled round (gc_0352's legs, front after back: max strain
+  // 445 %).
+  std::map<std::pair<int, int>, int> seams_between;
+  for (const StitchPairs& range : garment_.stitches) {
+    const Stitch& stitch = garment_.pattern.stitches[range.stitch];
+    const int a = std::min(stitch.a.panel, stitch.b.panel),
+              b = std::max(stitch.a.panel, stitch.b.panel);
+    if (a != b && is_candidate[a] && is_candidate[b] && ++seams_between[{a, b}] == 2)
+      groups.join(a, b);
+  }
   std::map<int, std::vector<int>> members;
   for (int p = 0; p < piece_count; ++p)
     if (is_candidate[p]) members[groups.find(p)].push_back(p);

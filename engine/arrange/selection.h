@@ -1,8 +1,10 @@
 #pragma once
 // Piece selection (paper §6): which piece(s) to arrange next, given the pieces arranged so far.
 // Single pieces are scored by the heuristic of Eq. 6; candidates whose connections to the arranged
-// set continue smoothly along its sewing boundary are combined and scored as one piece (§6.2); the
-// best candidates fill a batch up to a vertex cap, so that small pieces are solved together.
+// set continue smoothly along its sewing boundary are combined and scored as one piece (§6.2), as
+// are two sewn to each other by two or more seams (the halves of a tube, a trouser leg's front and
+// back); the best candidates fill a batch up to a vertex cap, so that small pieces are solved
+// together.
 
 #include <Eigen/Core>
 #include <vector>
@@ -34,7 +36,8 @@ class Selector {
   Selector(const Garment& garment, SelectionParameters parameters = {});
 
   // Candidates sewn to `arranged` (a mask over pieces), combined where their connection to the
-  // arranged set is continuous, best first. positions: #V×3, current positions of arranged pieces.
+  // arranged set is continuous or where they close into a tube between them, best first. positions:
+  // #V×3, current positions of arranged pieces.
   std::vector<Candidate> candidates(const std::vector<bool>& arranged,
                                     const Eigen::MatrixX3d& positions) const;
 

@@ -3,7 +3,7 @@
 // sewn to the arranged set, best first, and fills batches as a maximal prefix of its candidates
 // within the vertex cap; on a hand-made pattern, Eq. 6 scores and their order equal values
 // computed here from the rectangles' dimensions, and two candidates whose seams continue straight
-// across a point are combined (§6.2).
+// across a point are combined (§6.2), as are two that close into a tube between them.
 
 #include <QtTest>
 
@@ -271,6 +271,44 @@ class SelectionTest : public QObject {
     for (int v = top_right.first_vertex; v < top_right.first_vertex + top_right.vertex_count; ++v)
       bent(v, 2) = bent(v, 0) - 0.2;
     QCOMPARE(selector.candidates(arranged, bent).size(), std::size_t{3});
+  }
+
+  // Two candidates sewn to each other at both sides close into a tube between them, and are one
+  // candidate even where the arranged set's boundary turns sharply between them (the right top
+  // turned by 45°, which keeps the skirts of the test above apart); sewn at one side only, they
+  // stay apart.
+  void candidates_closing_into_a_tube_are_combined() {
+    const auto skirts = [](bool both_sides) {
+      const std::string json =
+          "{\"pattern\": {\"panels\": {" + rectangle("top_left", 20, 20) + ", " +
+          rectangle("top_right", 20, 20) + ", " + rectangle("left", 20, 30) + ", " +
+          rectangle("right", 20, 30) +
+          "}, \"panel_order\": [\"top_left\", \"top_right\", \"left\", \"right\"], "
+          "\"stitches\": [" +
+          stitch("top_left", 1, "top_right", 3) + ", " + stitch("top_left", 0, "left", 2) + ", " +
+          stitch("top_right", 0, "right", 2) + ", " + stitch("left", 1, "right", 3) +
+          (both_sides ? ", " + stitch("right", 1, "left", 3) : std::string()) +
+          "]}, \"properties\": {\"units_in_meter\": 100}}";
+      return build_garment(parse_pattern(json, "tube.json"));
+    };
+    for (const bool both_sides : {true, false}) {
+      const Garment garment = skirts(both_sides);
+      Eigen::MatrixX3d bent = rest_layout(garment);
+      const Piece& top_right = garment.pieces[1];
+      for (int v = top_right.first_vertex; v < top_right.first_vertex + top_right.vertex_count;
+           ++v) {
+        bent(v, 0) += 0.2;
+        bent(v, 2) = bent(v, 0) - 0.2;
+      }
+      const std::vector<Candidate> candidates =
+          Selector(garment).candidates({true, true, false, false}, bent);
+      QCOMPARE(candidates.size(), both_sides ? std::size_t{1} : std::size_t{2});
+      if (both_sides) {
+        std::vector<int> combined = candidates[0].pieces;
+        std::sort(combined.begin(), combined.end());
+        QCOMPARE(combined, (std::vector<int>{2, 3}));
+      }
+    }
   }
 
   // §6.2 on one arranged piece: a top whose bottom edge is split at its middle, the left half sewn
