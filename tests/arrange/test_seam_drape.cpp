@@ -10,6 +10,7 @@
 //     corners) and no edge is stretched past 20 %: the hanging cone only compresses the hem;
 // at the flare angle when the seam turns as much round the body as in the pattern (the cone that
 // keeps its length would be flat), and at asin(1 / 1.5) on a waist that turns 1.5 times as much;
+// gc_0332's circle skirt, its cloth on every side of its waist arc, hangs too;
 // and it is left alone when the rigid fit already hangs it (if only sideways fits are to be
 // hung), when it would go up from its seam (a
 // bodice half on the skirt), when hung it would face the body (the disc's outside down), or when
@@ -439,6 +440,31 @@ class SeamDrapeTest : public QObject {
     const QString failure = check_hanging(disc.garment, disc.skirt, disc.placed, disc.transform,
                                           settings, disc.landmarks, disc.positions, flare);
     QVERIFY2(failure.isEmpty(), qPrintable(failure));
+  }
+
+  // gc_0332's skirt back (a circle skirt under a waistband, made for mean_all): its waist is a
+  // major arc, so that its cloth lies on every side of the seam in the pattern, the seam 47 % of
+  // the way down the panel's extent from its top. It hangs as the flat disc does; a limit of 30 %
+  // (the former default) leaves it to the rigid fit, and the arrangement stood it up round the
+  // chest (max strain 70.5 % in the garment).
+  void circleSkirtRoundItsWaistOnEverySideHangs() {
+    const Garment garment = build_garment(
+        load_pattern(test::test_data("patterns/hanging_skirt/gc_0332_specification.json")));
+    const int skirt = piece_named(garment, "skirt_back");
+    QVERIFY(skirt >= 0);
+    const RigidTransform transform = at_seam_height(flat_behind());
+    Eigen::MatrixX3d positions = Eigen::MatrixX3d::Zero(garment.vertex_count(), 3);
+    const std::vector<bool> placed = partners_at(garment, skirt, {"wb_back"}, transform, positions);
+    const BodyLandmarks landmarks =
+        torso_at(placed_at(transform, waist_arc(garment, skirt, placed).centre));
+    SeamDrapeSettings settings;
+    const QString failure = check_hanging(garment, skirt, placed, transform, settings, landmarks,
+                                          positions, settings.flare_angle);
+    QVERIFY2(failure.isEmpty(), qPrintable(failure));
+    settings.seam_extent = 0.3;
+    QCOMPARE(check_hanging(garment, skirt, placed, transform, settings, landmarks, positions,
+                           settings.flare_angle),
+             QString("not draped"));
   }
 
   // The same panel on a waist that turns 1.5 times as much as its arc in the pattern, with the
