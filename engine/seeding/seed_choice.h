@@ -1,13 +1,13 @@
 #pragma once
 // The seed (paper §5): the piece(s) arranged first and the body location each goes to. Automatic:
 // the waist piece (with the pieces of its kind sewn to it: a waistband in two) when some of these
-// close into a ring round the body (and is no long top's hem band: its chest pieces are measured
-// against the body), else the chest pieces (front and back), else the neck piece (a
-// collar ring, likewise), else the pelvis pieces (front and back, for skirts and trousers without
-// a waistband; when the classifier finds one side only, the other is the piece sewn to it that is
-// named for that side or that it ranks highest for it), else a rule: the piece with the most
-// garment hanging below its seams (Eq. 1), as the neck or waist seed would have. The paper puts
-// the neck piece with the waist piece, before the chests; collars come after the chests here
+// close into a ring round the body and it is no long top's hem band (its chest pieces are measured
+// against the body), else the chest pieces (front and back), else the neck piece (a collar ring,
+// likewise), else the pelvis pieces (front and back, for skirts and trousers without a waistband;
+// when the classifier finds one side only, the other is the piece sewn to it that is named for
+// that side or that it ranks highest for it), else a rule: the piece with the most garment
+// hanging below its seams (Eq. 1), as the neck or waist seed would have. The paper puts the neck
+// piece with the waist piece, before the chests; collars come after the chests here
 // (seed_choice.cpp gives the figures). Panels named front or back go to that side whatever the
 // classifier says of their side (seed_choice.cpp says why). Manual (§5.1.2): any set of pieces
 // and one of the 15 body locations.
