@@ -254,9 +254,14 @@ void Session::run_check() {
   const bool out_of_time = state_.report.seconds > options_.arrangement.revisit_seconds;
   if (revisit != Revisit::None && out_of_time) record.out_of_time = true;
   bool revisiting = revisit != Revisit::None && !out_of_time;
-  if (revisiting && revisit == Revisit::Grow && !batch.grow()) {
-    state_.grown = true;  // nothing to grow by: accept
-    revisiting = false;
+  if (revisiting && revisit == Revisit::Grow) {
+    State::BeforeGrowth before{batch, state_.positions, record.check};
+    if (batch.grow()) {
+      state_.before_growth = std::move(before);
+    } else {
+      state_.grown = true;  // nothing to grow by: accept
+      revisiting = false;
+    }
   }
   if (revisiting) {
     record.revisits.push_back(to_string(revisit));
@@ -272,7 +277,30 @@ void Session::run_check() {
     state_.phase = Phase::Align;
     return;
   }
-  for (int piece : batch.pieces()) {
+  undo_harmful_growth();
+  accept_batch();
+}
+
+void Session::undo_harmful_growth() {
+  if (!state_.before_growth) return;
+  BatchRecord& record = state_.report.batches[state_.batch_index];
+  const State::BeforeGrowth& before = *state_.before_growth;
+  const ArrangementParameters& parameters = options_.arrangement;
+  if (record.check.max_strain > parameters.strain_threshold &&
+      record.check.max_strain > parameters.grown_strain_ratio * before.check.max_strain) {
+    for (int piece : state_.batch->pieces())
+      if (!state_.arranged[piece]) state_.pieces[piece] = PieceState::Waiting;
+    state_.batch = before.batch;
+    state_.positions = before.positions;
+    record.check = before.check;
+    record.pieces = before.batch.pieces();
+    record.growth_undone = true;
+  }
+  state_.before_growth.reset();
+}
+
+void Session::accept_batch() {
+  for (int piece : state_.batch->pieces()) {
     state_.arranged[piece] = true;
     state_.pieces[piece] = PieceState::Arranged;
     state_.report.order.push_back(piece);

@@ -53,8 +53,9 @@ struct PhaseRecord {
 struct BatchRecord {
   std::vector<int> pieces;  // after any growth
   std::vector<std::string> revisits;
-  bool out_of_time = false;  // a revisit the check asked for was skipped (revisit_seconds)
-  BatchCheck check;          // the last check
+  bool out_of_time = false;    // a revisit the check asked for was skipped (revisit_seconds)
+  bool growth_undone = false;  // the batch grew, then was kept as before (grown_strain_ratio)
+  BatchCheck check;            // the last check
   double seconds = 0.0;
 };
 
@@ -128,6 +129,13 @@ class Session {
     int batch_index = -1;
     int visit = 0, flatten_revisits = 0;
     bool seam_revisited = false, grown = false;
+    // The batch and positions as they were checked just before the batch grew.
+    struct BeforeGrowth {
+      BatchArrangement batch;
+      Eigen::MatrixX3d positions;
+      BatchCheck check;
+    };
+    std::optional<BeforeGrowth> before_growth;
     SessionReport report;
   };
   struct Checkpoint {
@@ -139,6 +147,9 @@ class Session {
   void run_select();
   void run_arrange_step(ArrangeStep step, SessionObserver* observer);
   void run_check();
+  // Goes back to the batch as it was before it grew when growing stretched it worse.
+  void undo_harmful_growth();
+  void accept_batch();
   void run_post_process(SessionObserver* observer);
   void checkpoint(bool batch_complete);
   std::vector<int> next_explicit_batch() const;

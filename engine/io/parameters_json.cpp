@@ -71,6 +71,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("theta_out_threshold", p.theta_out_threshold);
   visit("strain_threshold", p.strain_threshold);
   visit("max_flatten_revisits", p.max_flatten_revisits);
+  visit("grown_strain_ratio", p.grown_strain_ratio);
   visit("revisit_seconds", p.revisit_seconds);
   visit("seed_iterations", p.seed_iterations);
   visit("post_process_iterations", p.post_process_iterations);

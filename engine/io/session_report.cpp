@@ -46,6 +46,7 @@ std::string session_report_json(const Session& session, const GarmentMetrics& me
                                {"vertices", vertices},
                                {"revisits", batch.revisits},
                                {"out_of_time", batch.out_of_time},
+                               {"growth_undone", batch.growth_undone},
                                {"theta_in", batch.check.theta_in},
                                {"theta_out", batch.check.theta_out},
                                {"max_strain", batch.check.max_strain},

@@ -9,10 +9,12 @@
 // - reorder() with the order already arranged leaves the state unchanged at batch boundaries,
 //   in the middle of a batch and at the end;
 // - a cancelled step leaves the session as before the step, and it continues from there;
-// - without phases (the ablation) the align step does the whole batch's solve.
+// - without phases (the ablation) the align step does the whole batch's solve;
+// - a grown batch that the guard undoes is accepted as it was before growing.
 
 #include <QtTest>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -244,6 +246,71 @@ class SessionTest : public QObject {
     QCOMPARE(revisited, static_cast<int>(in_time.batches.size()));
     QCOMPARE(skipped, static_cast<int>(out_of_time.batches.size()));
     QCOMPARE(out_of_time.order.size(), in_time.order.size());
+  }
+
+  void growth_that_stretches_the_batch_worse_is_undone() {
+    // Strain threshold 0: every batch with an unarranged neighbour grows (rule 3). With a ratio of
+    // 0 every grown batch counts as stretched worse and is undone: it is accepted with the pieces
+    // and positions it had when checked before growing, and the pieces it grew by wait for
+    // batches of their own. With an unreachable ratio no growth is undone. On gc_0007 (a top with
+    // cuffed sleeves: the sleeve halves grow by their cuff; gc_0012's batches have nothing left to
+    // grow by).
+    SceneOptions scene_options;
+    scene_options.distance_field.spacing = 0.01;
+    const std::shared_ptr<const Scene> scene = load_scene(
+        test::test_data("patterns/gc_0007_specification.json"), default_body_path(), scene_options);
+    const auto options_with = [](double ratio) {
+      SessionOptions options = small_options();
+      options.arrangement.strain_threshold = 0.0;
+      options.arrangement.grown_strain_ratio = ratio;
+      return options;
+    };
+    const Garment& garment = *scene->garment;
+    Session session(scene, options_with(0.0));
+    std::vector<int> pieces_before_growth;
+    Eigen::MatrixX3d positions_before_growth;
+    int undone = 0;
+    while (!session.done()) {
+      if (session.phase() != Phase::Check) {
+        session.step();
+        continue;
+      }
+      const std::vector<int> pieces = session.report().batches.back().pieces;
+      const Eigen::MatrixX3d positions = session.positions();
+      const std::size_t revisits = session.report().batches.back().revisits.size();
+      session.step();
+      const BatchRecord& record = session.report().batches.back();
+      if (record.revisits.size() > revisits && record.revisits.back() == "grow") {
+        QVERIFY(record.pieces.size() > pieces.size());
+        pieces_before_growth = pieces;
+        positions_before_growth = positions;
+      }
+      if (session.phase() != Phase::Select || !record.growth_undone) continue;
+      ++undone;
+      QCOMPARE(record.pieces, pieces_before_growth);
+      const std::set<int> kept(pieces_before_growth.begin(), pieces_before_growth.end());
+      for (int v = 0; v < garment.vertex_count(); ++v)
+        if (kept.count(garment.vertex_piece(v)))
+          QCOMPARE(session.positions().row(v), positions_before_growth.row(v));
+      const SessionSnapshot snapshot = session.snapshot();
+      for (int piece = 0; piece < static_cast<int>(garment.pieces.size()); ++piece) {
+        const bool arranged = snapshot.pieces[piece] == PieceState::Arranged ||
+                              snapshot.pieces[piece] == PieceState::Seed;
+        const bool ordered = std::count(snapshot.order.begin(), snapshot.order.end(), piece) > 0;
+        QCOMPARE(arranged, ordered);
+      }
+    }
+    QVERIFY(undone > 0);
+    QCOMPARE(session.report().order.size(), garment.pieces.size());
+
+    Session keeping(scene, options_with(1e9));
+    keeping.run();
+    int grown = 0;
+    for (const BatchRecord& record : keeping.report().batches) {
+      QVERIFY(!record.growth_undone);
+      grown += std::count(record.revisits.begin(), record.revisits.end(), "grow");
+    }
+    QVERIFY(grown > 0);
   }
 
   void without_phases_the_align_step_solves_everything() {
