@@ -14,6 +14,7 @@
 #include "engine/energy/side_barrier_potential.h"
 #include "engine/quality/exact_intersections.h"
 #include "engine/quality/garment_metrics.h"
+#include "engine/quality/verdict.h"
 #include "engine/solver/quasi_newton_solver.h"
 
 namespace garment {
@@ -133,6 +134,28 @@ void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vec
     positions = untangled;
 }
 
+// Whether the arranged pieces would fail the verdict's strain or seam-gap check (verdict.h): an
+// edge stretched past the limit, or a sewing pair farther apart than the gap allowed.
+bool stretched_or_open(const Garment& garment, const Eigen::MatrixX2i& edges,
+                       const std::vector<bool>& arranged, const Eigen::MatrixX3d& positions) {
+  const QualityThresholds limits;
+  const auto taking_part = [&](int v) { return arranged[garment.vertex_piece(v)]; };
+  for (Eigen::Index e = 0; e < edges.rows(); ++e) {
+    const int a = edges(e, 0), b = edges(e, 1);
+    if (!taking_part(a)) continue;
+    const double rest = (garment.rest_positions.row(a) - garment.rest_positions.row(b)).norm();
+    if ((positions.row(a) - positions.row(b)).norm() > (1.0 + limits.max_strain) * rest)
+      return true;
+  }
+  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
+    const int a = garment.sewing_pairs(k, 0), b = garment.sewing_pairs(k, 1);
+    if (taking_part(a) && taking_part(b) &&
+        (positions.row(a) - positions.row(b)).norm() > limits.max_seam_gap_m)
+      return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 PostProcessReport post_process(ArrangementContext& context, const SessionReport& report,
@@ -231,9 +254,17 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   quasi_newton.max_step = parameters.post_process_step;
   quasi_newton.stage = "post-process";
   quasi_newton.on_iterate = on_iterate;
-  const SolveReport solved = solve_quasi_newton(objective, positions, quasi_newton, observer);
+  SolveReport solved = solve_quasi_newton(objective, positions, quasi_newton, observer);
   result.iterations = solved.iterations;
   result.final_energy = solved.final_energy;
+  if (solved.reason != StopReason::Cancelled && parameters.post_process_extra_iterations > 0 &&
+      report.seconds < parameters.revisit_seconds &&
+      stretched_or_open(garment, mesh.edges, arranged, positions)) {
+    quasi_newton.max_iterations = parameters.post_process_extra_iterations;
+    solved = solve_quasi_newton(objective, positions, quasi_newton, observer);
+    result.iterations += solved.iterations;
+    result.final_energy = solved.final_energy;
+  }
 
   SolverSettings settings;
   settings.stage = "post-process";

@@ -75,6 +75,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("revisit_seconds", p.revisit_seconds);
   visit("seed_iterations", p.seed_iterations);
   visit("post_process_iterations", p.post_process_iterations);
+  visit("post_process_extra_iterations", p.post_process_extra_iterations);
   visit("post_process_step", p.post_process_step);
   visit("post_process_sewing_factor", p.post_process_sewing_factor);
   visit("post_process_repulsion_factor", p.post_process_repulsion_factor);
