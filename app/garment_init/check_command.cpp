@@ -46,7 +46,10 @@ int check_command(const std::vector<std::string>& args) {
                   garment.pieces[pair.piece_b].name.c_str(), pair.count);
     std::printf("  %-22s %d (theta_in %.3f, theta_out %.3f)\n", "folds", metrics.folds,
                 metrics.theta_in, metrics.theta_out);
-    std::printf("  %-22s %.4f\n", "max_strain", metrics.max_strain);
+    std::printf("  %-22s %.4f", "max_strain", metrics.max_strain);
+    if (metrics.max_strain_body_distance_m >= 0.0)
+      std::printf(" (its edge %.1f mm from the body)", 1000.0 * metrics.max_strain_body_distance_m);
+    std::printf("\n");
     std::printf("  %-22s %.4f\n", "p99_strain", metrics.p99_strain);
     std::printf("  %-22s %.4f\n", "max_seam_gap_m", metrics.max_seam_gap_m);
     std::printf("  %-22s %zu\n", "misplaced", metrics.misplaced.size());

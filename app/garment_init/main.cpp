@@ -80,8 +80,9 @@ const Command kCommands[] = {
      "the bundled body, resources/bodies/mean_all.obj) and prints every metric:\n"
      "body_inside_vertices (and max depth), body_crossing_edges, self_crossing_edges (cloth\n"
      "edges through cloth triangles, seams welded, with the pairs of pieces), folds\n"
-     "(neighbour triangles with normal dot < -0.5; theta_in/theta_out), max_strain,\n"
-     "p99_strain, max_seam_gap_m, misplaced (pieces on the wrong side of the body; expected\n"
+     "(neighbour triangles with normal dot < -0.5; theta_in/theta_out), max_strain (and how\n"
+     "far its edge is from the body), p99_strain, max_seam_gap_m, misplaced (pieces on the\n"
+     "wrong side of the body; expected\n"
      "sides from the panel names), fails and ok. ok = nothing inside or crossing the body, no\n"
      "cloth crossing, no fold, strain <= 20 %, seam gap <= 5 mm, nothing misplaced. Exit 0\n"
      "when ok, 3 when not. --json prints one object.",

@@ -26,6 +26,7 @@ std::string quality_json(const Garment& garment, const GarmentMetrics& metrics,
   json["theta_out"] = metrics.theta_out;
   json["max_strain"] = metrics.max_strain;
   json["p99_strain"] = metrics.p99_strain;
+  json["max_strain_body_distance_m"] = metrics.max_strain_body_distance_m;
   json["max_seam_gap_m"] = metrics.max_seam_gap_m;
   json["misplaced"] = nlohmann::json::array();
   for (const Misplacement& entry : metrics.misplaced)

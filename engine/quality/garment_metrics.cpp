@@ -130,6 +130,7 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
       metrics.theta_out = std::min(metrics.theta_out, dot);
 
   std::vector<double> strains(static_cast<std::size_t>(edge_count), 0.0);
+  Eigen::Index most_stretched = -1;
   for (Eigen::Index e = 0; e < edge_count; ++e) {
     if (!(rest_lengths_(e) > 0.0)) continue;
     const double length =
@@ -137,6 +138,7 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
     strains[e] = std::max(0.0, (length - rest_lengths_(e)) / rest_lengths_(e));
     double& piece_max = metrics.piece_max_strain[edge_piece(e)];
     piece_max = std::max(piece_max, strains[e]);
+    if (strains[e] > metrics.max_strain) most_stretched = e;
     metrics.max_strain = std::max(metrics.max_strain, strains[e]);
   }
   if (!strains.empty()) {
@@ -185,6 +187,11 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
           std::max(metrics.max_inside_depth_m,
                    body_->surface.distance_to_surface(positions.row(v).transpose()));
     }
+    if (most_stretched >= 0)
+      metrics.max_strain_body_distance_m =
+          body_->surface.distance_to_surface(0.5 * (positions.row(edges_.edges(most_stretched, 0)) +
+                                                    positions.row(edges_.edges(most_stretched, 1)))
+                                                       .transpose());
     metrics.misplaced = find_misplaced_pieces(garment_, positions, regions_, body_->axes);
     metrics.seconds_body = seconds_since(body_start);
   }

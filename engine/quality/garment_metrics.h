@@ -15,7 +15,8 @@
 //   theta_in / theta_out  smallest normal dot of neighbour triangles inside pieces / of triangle
 //                         pairs that become neighbours by sewing with consistent winding (Eq. 13)
 //   strain                stretch of the edges of E: max(0, length / rest length - 1), rest
-//                         lengths from rest_positions (compression does not count)
+//                         lengths from rest_positions (compression does not count); the most
+//                         stretched edge's distance from the body
 //   seam gap              distance between the two vertices of a sewing pair
 //   misplaced             piece_placement.h
 
@@ -63,6 +64,10 @@ struct GarmentMetrics {
   double max_strain = 0.0;
   double p99_strain = 0.0;
   std::vector<double> piece_max_strain;  // per piece
+  // Distance from the body's surface to the middle of the most stretched edge (-1 without a body):
+  // a few millimetres when the cloth is stretched round the body (a band smaller than the body
+  // where it sits), more when it is pulled by a seam or a fold.
+  double max_strain_body_distance_m = -1.0;
 
   double max_seam_gap_m = 0.0;
   std::vector<double> stitch_max_gap_m;  // per Garment::stitches entry

@@ -97,9 +97,13 @@ QualityVerdict judge_garment(const Garment& garment, const GarmentMetrics& metri
     std::set<int> pieces;
     for (int p = 0; p < piece_count; ++p)
       if (metrics.piece_max_strain[p] > thresholds.max_strain) pieces.insert(p);
+    std::string where;
+    if (metrics.max_strain_body_distance_m >= 0.0)
+      where =
+          format(" (its edge %.0f mm from the body)", 1000.0 * metrics.max_strain_body_distance_m);
     add_failure(verdict, garment, FailureKind::Strain, pieces,
                 format("max strain %.1f %%", 100.0 * metrics.max_strain) +
-                    format(" > %.0f %%", 100.0 * thresholds.max_strain));
+                    format(" > %.0f %%", 100.0 * thresholds.max_strain) + where);
   }
   if (metrics.max_seam_gap_m > thresholds.max_seam_gap_m) {
     std::set<int> pieces;

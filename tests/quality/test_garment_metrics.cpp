@@ -211,9 +211,41 @@ class GarmentMetricsTest : public QObject {
     QVERIFY(std::abs(metrics.max_strain - 0.3) < 1e-9);
     QVERIFY(metrics.p99_strain > 0.2);
     QVERIFY(metrics.piece_max_strain[kFront] < 1e-9);
+    // The flap hangs flat at z = 0.45 over |x| <= 0.13 in front of the 0.15 m cylinder: its edges
+    // are 0.30 to 0.32 m from the body.
+    QVERIFY(metrics.max_strain_body_distance_m > 0.30 - 1e-9);
+    QVERIFY(metrics.max_strain_body_distance_m < 0.45 - 0.15 + 0.02);
     const QualityVerdict verdict = judge_garment(garment, metrics);
     QCOMPARE(kinds(verdict), std::vector<FailureKind>{FailureKind::Strain});
     QCOMPARE(failing_pieces(verdict), std::vector<int>{kFlap});
+    QVERIFY(verdict.failures.front().message.find("mm from the body") != std::string::npos);
+  }
+
+  void stretched_round_the_body() {
+    // The front half of the tube (radius 0.25) pulled up to 1.3 times its height: the stretched
+    // edges lie on the tube, 0.10 m from the 0.15 m cylinder; wrapped at 0.152 m, 2 mm from it.
+    const Garment garment = tube_and_flap();
+    for (const double radius : {kTubeRadius, 0.152}) {
+      Eigen::MatrixX3d positions = clean_state(garment);
+      wrap_on_cylinder(garment, kFront, radius, 0.0, 1.0, positions);
+      const Piece& front = garment.pieces[kFront];
+      auto heights = positions.middleRows(front.first_vertex, front.vertex_count).col(1);
+      heights = (heights.array() - 1.0) * 1.3 + 1.0;
+      const GarmentMetrics metrics = measure(garment, positions);
+      QVERIFY(std::abs(metrics.max_strain - 0.3) < 1e-9);
+      QVERIFY(std::abs(metrics.max_strain_body_distance_m - (radius - 0.15)) < 1e-3);
+    }
+  }
+
+  void without_a_body_no_strain_distance() {
+    const Garment garment = tube_and_flap();
+    Eigen::MatrixX3d positions = clean_state(garment);
+    const Piece& flap = garment.pieces[kFlap];
+    positions.middleRows(flap.first_vertex, flap.vertex_count).col(0) *= 1.3;
+    const GarmentMetrics metrics =
+        measure_garment(garment, positions, nullptr, expected_regions_from_names(garment));
+    QVERIFY(metrics.max_strain > 0.2);
+    QCOMPARE(metrics.max_strain_body_distance_m, -1.0);
   }
 
   void open_seam() {
