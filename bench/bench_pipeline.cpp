@@ -139,11 +139,12 @@ int main(int argc, char** argv) {
     const std::filesystem::path bodies = folder / ".." / ".." / "bodies";
     Configuration batched{"batches up to the vertex cap (default)", parameters, {}};
     Configuration single{"one piece at a time", parameters, {}};
-    // A cap of one vertex still takes the first candidate whole, and a candidate is a combination
-    // of pieces wherever their connection continues smoothly (§6.2): on the first 40 patterns that
-    // left 104 batches against the default's 71. A turn of 0° combines nothing: 186 batches.
+    // A cap of one vertex still takes the first candidate whole, and a candidate combines pieces
+    // whose connection continues smoothly (§6.2) or that close into a tube: on the first 40
+    // patterns that left 104 batches against the default's 71 before tubes were combined. Without
+    // combination, one piece per batch: 186 batches.
     single.parameters.selection.batch_vertex_cap = 1;
-    single.parameters.selection.smooth_turn_degrees = 0.0;
+    single.parameters.selection.combine = false;
     Configuration at_once{"every potential at once (no phases)", parameters, {}};
     at_once.parameters.phased = false;
     std::vector<Configuration*> configurations{&batched};

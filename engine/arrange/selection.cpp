@@ -109,7 +109,7 @@ std::vector<Candidate> Selector::candidates(const std::vector<bool>& arranged,
   }
   std::map<int, std::vector<int>> members;
   for (int p = 0; p < piece_count; ++p)
-    if (is_candidate[p]) members[groups.find(p)].push_back(p);
+    if (is_candidate[p]) members[parameters_.combine ? groups.find(p) : p].push_back(p);
   std::vector<Candidate> result;
   for (auto& [root, pieces] : members)
     result.push_back({pieces, score(arranged, pieces)});

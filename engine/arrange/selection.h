@@ -24,6 +24,9 @@ struct SelectionParameters {
   // turn by less than this angle there (§6.2).
   double smooth_turn_degrees = 35.0;
   int batch_vertex_cap = 1024;  // §6.2
+  // Combined candidates (smooth connections and tube halves, above); off, every candidate is one
+  // piece: with a cap of one vertex, one piece per batch (bench_pipeline's batching ablation).
+  bool combine = true;
 };
 
 struct Candidate {

@@ -329,6 +329,20 @@ class SelectionTest : public QObject {
     QCOMPARE(combined, (std::vector<int>{1, 2}));
     QVERIFY(std::abs(candidates[0].score - eq6(0.4, 0.4, 0.12, 0.12, SelectionParameters{})) <
             1e-9);
+
+    // Without combination (the batching ablation) each skirt is its own candidate, and a cap of
+    // one vertex makes a batch of one piece.
+    SelectionParameters single;
+    single.combine = false;
+    single.batch_vertex_cap = 1;
+    const Selector one_at_a_time(garment, single);
+    const std::vector<Candidate> separate =
+        one_at_a_time.candidates({true, false, false}, rest_layout(garment));
+    QCOMPARE(separate.size(), std::size_t{2});
+    for (const Candidate& candidate : separate)
+      QCOMPARE(candidate.pieces.size(), std::size_t{1});
+    QCOMPARE(one_at_a_time.next_batch({true, false, false}, rest_layout(garment)).size(),
+             std::size_t{1});
   }
 };
 
