@@ -13,7 +13,8 @@
 //   reach into each other's side between the body's legs without it;
 // - the two-sided self repulsion within a layer (own_cloth_repulsion.h) on gc_0195, a circle
 //   skirt whose waistband folds through itself without it;
-// - the longer settle of a garment still over-stretched after the first iterations, on gc_0279 (a
+// - the longer settle of a garment narrowly over-stretched after the first iterations, on gc_0279
+// (a
 //   skirt whose front waistband is left just past 20 % strain), and its absence on gc_0195, which
 //   settles clean within them.
 
@@ -310,7 +311,7 @@ class PostProcessTest : public QObject {
     QVERIFY(after.max_strain < 0.2);
     QCOMPARE(after.body_crossing_edges, 0);
   }
-  void settlesLongerOnlyWhileStretchedOrOpen() {
+  void settlesLongerOnlyWhileNarrowlyStretchedOrOpen() {
     if (test::sanitizer_build())
       QSKIP("a sanitizer build: whole sessions at full budgets are checked in the Release run");
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
@@ -336,7 +337,8 @@ class PostProcessTest : public QObject {
             1000.0 * after.max_seam_gap_m);
       QVERIFY(before.max_strain > 0.2 || before.max_seam_gap_m > 0.005);
       QCOMPARE(first_only.post_process_iterations, first);
-      QCOMPARE(longer.post_process_iterations, first + extra);
+      QVERIFY(longer.post_process_iterations > first);
+      QVERIFY(longer.post_process_iterations <= first + extra);
       QVERIFY(after.max_strain <= 0.2);
       QVERIFY(after.max_seam_gap_m <= 0.005);
     }
