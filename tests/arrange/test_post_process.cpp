@@ -13,10 +13,9 @@
 //   reach into each other's side between the body's legs without it;
 // - the two-sided self repulsion within a layer (own_cloth_repulsion.h) on gc_0195, a circle
 //   skirt whose waistband folds through itself without it;
-// - the longer settle of a garment narrowly over-stretched after the first iterations, on gc_0279
-// (a
-//   skirt whose front waistband is left just past 20 % strain), and its absence on gc_0195, which
-//   settles clean within them.
+// - the longer settle of a garment narrowly over-stretched after the first iterations, on
+//   gc_0279 (a skirt whose front waistband is left just past 20 % strain), and its absence on
+//   gc_0195, which settles clean within them.
 
 #include <tbb/global_control.h>
 
