@@ -88,10 +88,10 @@ struct ArrangementParameters {
   // against the Jacobi-preconditioned descent's 600 iterations (69 clean): 300 iterations with
   // 2 mm steps 77 clean, 4 mm 78, 600 iterations 79 but p95 14.9 s instead of 8.4 s.
   int post_process_iterations = 300;
-  // Then, while the garment narrowly fails the verdict on strain or an open seam (post_process.cpp),
-  // up to this many more, in rounds of 100 that stop once it passes them, and not past
-  // revisit_seconds of the session (the time bound): most garments settle clean within the first
-  // 300, and only the near misses pay for the longer settle.
+  // Then, while the garment narrowly fails the verdict on strain or an open seam
+  // (post_process.cpp), up to this many more, in rounds of 100 that stop once it passes them, and
+  // not past revisit_seconds of the session (the time bound): most garments settle clean within the
+  // first 300, and only the near misses pay for the longer settle.
   int post_process_extra_iterations = 600;
   double post_process_step = 0.004;
   // "Strong sewing" and "greater repulsion strength" (§4), measured on 19 GarmentCode patterns
