@@ -51,6 +51,15 @@ int check_command(const std::vector<std::string>& args) {
       std::printf(" (its edge %.1f mm from the body)", 1000.0 * metrics.max_strain_body_distance_m);
     std::printf("\n");
     std::printf("  %-22s %.4f\n", "p99_strain", metrics.p99_strain);
+    if (!metrics.tightest_opening.pieces.empty()) {
+      const OpeningFit& tight = metrics.tightest_opening;
+      std::printf("  %-22s %.1f cm long, body inside %.1f cm round (%+.1f %%):", "tightest_opening",
+                  100.0 * tight.rest_length_m, 100.0 * tight.body_girth_m,
+                  100.0 * tight.forced_strain());
+      for (const int piece : tight.pieces)
+        std::printf(" %s", garment.pieces[piece].name.c_str());
+      std::printf("\n");
+    }
     std::printf("  %-22s %.4f\n", "max_seam_gap_m", metrics.max_seam_gap_m);
     std::printf("  %-22s %zu\n", "misplaced", metrics.misplaced.size());
     for (const Misplacement& entry : metrics.misplaced)

@@ -27,6 +27,14 @@ std::string quality_json(const Garment& garment, const GarmentMetrics& metrics,
   json["max_strain"] = metrics.max_strain;
   json["p99_strain"] = metrics.p99_strain;
   json["max_strain_body_distance_m"] = metrics.max_strain_body_distance_m;
+  if (!metrics.tightest_opening.pieces.empty()) {
+    nlohmann::json pieces = nlohmann::json::array();
+    for (const int piece : metrics.tightest_opening.pieces)
+      pieces.push_back(name(piece));
+    json["tightest_opening"] = {{"pieces", pieces},
+                                {"rest_length_m", metrics.tightest_opening.rest_length_m},
+                                {"body_girth_m", metrics.tightest_opening.body_girth_m}};
+  }
   json["max_seam_gap_m"] = metrics.max_seam_gap_m;
   json["misplaced"] = nlohmann::json::array();
   for (const Misplacement& entry : metrics.misplaced)

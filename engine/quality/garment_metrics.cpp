@@ -70,6 +70,7 @@ GarmentChecker::GarmentChecker(const Garment& garment, const BodyReference* body
                         garment.rest_positions.row(edges_.edges(e, 1)))
                            .norm();
   welded_ = weld_seams_and_darts(garment);
+  openings_ = garment_openings(garment, welded_);
 
   Eigen::MatrixX3i welded_triangles(garment.triangle_count(), 3);
   for (int t = 0; t < garment.triangle_count(); ++t)
@@ -192,6 +193,14 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
           body_->surface.distance_to_surface(0.5 * (positions.row(edges_.edges(most_stretched, 0)) +
                                                     positions.row(edges_.edges(most_stretched, 1)))
                                                        .transpose());
+    for (const Opening& opening : openings_) {
+      OpeningFit fit{opening.pieces, opening.rest_length_m,
+                     body_girth_inside(opening, positions, body_->mesh)};
+      if (fit.body_girth_m > 0.0 &&
+          (metrics.tightest_opening.pieces.empty() ||
+           fit.forced_strain() > metrics.tightest_opening.forced_strain()))
+        metrics.tightest_opening = std::move(fit);
+    }
     metrics.misplaced = find_misplaced_pieces(garment_, positions, regions_, body_->axes);
     metrics.seconds_body = seconds_since(body_start);
   }

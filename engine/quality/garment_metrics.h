@@ -18,6 +18,8 @@
 //                         lengths from rest_positions (compression does not count); the most
 //                         stretched edge's distance from the body
 //   seam gap              distance between the two vertices of a sewing pair
+//   tightest opening      the garment's opening (a boundary loop after welding) that the body
+//                         inside it stretches most: girth of the body inside / rest length − 1
 //   misplaced             piece_placement.h
 
 #include <Eigen/Core>
@@ -29,13 +31,15 @@
 #include "engine/quality/body_axes.h"
 #include "engine/quality/exact_intersections.h"
 #include "engine/quality/expected_region.h"
+#include "engine/quality/opening_fit.h"
 #include "engine/quality/piece_placement.h"
 
 namespace garment {
 
 // A body prepared for checking garments against it; build once and share.
 struct BodyReference {
-  explicit BodyReference(const BodyMesh& body) : surface(body), axes(body_axes(body)) {}
+  explicit BodyReference(const BodyMesh& body) : mesh(body), surface(mesh), axes(body_axes(mesh)) {}
+  const BodyMesh mesh;  // a copy: callers build references from temporaries
   BodySurfaceQueries surface;
   BodyAxes axes;
 };
@@ -43,6 +47,17 @@ struct BodyReference {
 struct PiecePairCount {
   int piece_a = 0, piece_b = 0;  // piece_a <= piece_b (equal: a piece crossing itself)
   int count = 0;                 // edges of either piece touching a triangle of the other
+};
+
+// An opening (opening_fit.h) against the body inside it where it sits.
+struct OpeningFit {
+  std::vector<int> pieces;  // the pieces it runs along; empty: no opening has body inside it
+  double rest_length_m = 0.0;
+  double body_girth_m = 0.0;
+  // How much the body inside forces the opening to stretch on average: girth / rest length − 1.
+  double forced_strain() const {
+    return rest_length_m > 0.0 ? body_girth_m / rest_length_m - 1.0 : 0.0;
+  }
 };
 
 struct GarmentMetrics {
@@ -68,6 +83,9 @@ struct GarmentMetrics {
   // a few millimetres when the cloth is stretched round the body (a band smaller than the body
   // where it sits), more when it is pulled by a seam or a fold.
   double max_strain_body_distance_m = -1.0;
+  // The opening whose body inside stretches it most; past the strain threshold it cannot pass
+  // where it sits, however the cloth around it is arranged.
+  OpeningFit tightest_opening;
 
   double max_seam_gap_m = 0.0;
   std::vector<double> stitch_max_gap_m;  // per Garment::stitches entry
@@ -100,6 +118,7 @@ class GarmentChecker {
   Eigen::VectorXd rest_lengths_;
   Eigen::VectorXi welded_;
   std::vector<Eigen::Vector2i> seam_neighbours_;  // triangle pairs adjacent by sewing only
+  std::vector<Opening> openings_;
 };
 
 // #V class of each vertex with its seam and dart partners welded (welded_vertices plus the dart

@@ -101,6 +101,13 @@ QualityVerdict judge_garment(const Garment& garment, const GarmentMetrics& metri
     if (metrics.max_strain_body_distance_m >= 0.0)
       where =
           format(" (its edge %.0f mm from the body)", 1000.0 * metrics.max_strain_body_distance_m);
+    const OpeningFit& tight = metrics.tightest_opening;
+    if (tight.forced_strain() > thresholds.max_strain) {
+      where += "; the opening along " +
+               piece_list(garment, std::set<int>(tight.pieces.begin(), tight.pieces.end())) +
+               format(" is %.1f cm long", 100.0 * tight.rest_length_m) +
+               format(", the body inside it %.1f cm round", 100.0 * tight.body_girth_m);
+    }
     add_failure(verdict, garment, FailureKind::Strain, pieces,
                 format("max strain %.1f %%", 100.0 * metrics.max_strain) +
                     format(" > %.0f %%", 100.0 * thresholds.max_strain) + where);

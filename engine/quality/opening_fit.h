@@ -1,0 +1,38 @@
+#pragma once
+// The garment's openings and the body inside them. An opening is a closed boundary loop of the
+// sewn garment: a neckline, a cuff's or a trouser leg's end, a waistband's top edge, a hem. Its
+// rest length bounds how far round it can reach without stretching; a part of the body passing
+// through it needs at least its girth there. When the girth is more than the rest length, the
+// cloth along the opening must stretch by at least their ratio wherever the opening sits at that
+// place: a design fault (a cuff narrower than the arm, a waistband smaller than the waist), which
+// no arrangement can fix without moving the opening to a thinner part of the body.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "engine/body/body_mesh.h"
+#include "engine/pattern/garment_mesh.h"
+
+namespace garment {
+
+struct Opening {
+  // The loop in order, one garment vertex per point (the start of each boundary edge): #L ids.
+  std::vector<int> vertices;
+  std::vector<int> pieces;     // the pieces it runs along, ascending
+  double rest_length_m = 0.0;  // sum of its edges' rest lengths
+};
+
+// The closed boundary loops of the garment with every vertex class of `welded` (#V, e.g.
+// weld_seams_and_darts) made one point: piece boundary edges that no other boundary edge meets
+// after welding. Boundary paths that do not close (a non-manifold junction) are left out.
+std::vector<Opening> garment_openings(const Garment& garment, const Eigen::VectorXi& welded);
+
+// What a tape round the body inside the opening reads: the body's section by the opening's
+// least-squares plane, keeping the points whose projection falls inside the projected loop (even
+// odd rule), measured as the perimeter of their convex hull. 0 when no body is inside. Any closed
+// curve round those points is at least this long, so the loop's current length is too.
+// positions: #V×3 garment state.
+double body_girth_inside(const Opening& opening, const Eigen::MatrixX3d& positions,
+                         const BodyMesh& body);
+
+}  // namespace garment
