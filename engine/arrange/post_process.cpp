@@ -7,6 +7,7 @@
 #include "engine/arrange/own_cloth_repulsion.h"
 #include "engine/arrange/session.h"
 #include "engine/arrange/untangle.h"
+#include "engine/core/mesh_geometry.h"
 #include "engine/core/mesh_topology.h"
 #include "engine/energy/body_edge_repulsion_potential.h"
 #include "engine/energy/objective.h"
@@ -166,6 +167,17 @@ bool narrowly_stretched_or_open(const Garment& garment, const Eigen::MatrixX2i& 
          gap <= kNearMiss * limits.max_seam_gap_m;
 }
 
+// Whether two neighbour triangles of one piece face apart, as the verdict counts folds
+// (garment_metrics.h): normals with dot < -0.5. mesh: the unwelded pieces' edges.
+bool has_folds(const Garment& garment, const MeshEdges& mesh, const Eigen::MatrixX3d& positions) {
+  const Eigen::MatrixX3d normals = triangle_normals(positions, garment.triangles);
+  for (Eigen::Index e = 0; e < mesh.edges.rows(); ++e) {
+    const int t0 = mesh.edge_triangles(e, 0), t1 = mesh.edge_triangles(e, 1);
+    if (t1 >= 0 && normals.row(t0).dot(normals.row(t1)) < -0.5) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 PostProcessReport post_process(ArrangementContext& context, const SessionReport& report,
@@ -289,6 +301,20 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   settings.on_iterate = on_iterate;
   if (parameters.post_process_untangle_passes > 0 && solved.reason != StopReason::Cancelled)
     untangle(context, mesh, arranged, objective, settings, positions, observer, result);
+
+  // A creased garment would fail the verdict anyway: stiffer bending smooths its creases, and the
+  // cloth it moves may come to cross, so it is untangled again.
+  if (parameters.post_process_fold_iterations > 0 && solved.reason != StopReason::Cancelled &&
+      seconds_so_far() < parameters.revisit_seconds && has_folds(garment, mesh, positions)) {
+    context.bending->set_stiffness(energy.bending_stiffness *
+                                   parameters.post_process_fold_bending_factor);
+    quasi_newton.max_iterations = parameters.post_process_fold_iterations;
+    solved = solve_quasi_newton(objective, positions, quasi_newton, observer);
+    result.iterations += solved.iterations;
+    result.final_energy = solved.final_energy;
+    if (parameters.post_process_untangle_passes > 0 && solved.reason != StopReason::Cancelled)
+      untangle(context, mesh, arranged, objective, settings, positions, observer, result);
+  }
 
   // The shared potentials go back to their arrangement strengths.
   context.sewing->set_stiffness(energy.sewing_stiffness);

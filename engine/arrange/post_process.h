@@ -19,8 +19,9 @@ struct SessionReport;
 
 struct PostProcessReport {
   int iterations = 0;  // solver iterations, the untangling's included
-  // Cloth-cloth contacts (edge, triangle) when untangling began and at its last pass, and the
-  // passes made.
+  // Cloth-cloth contacts (edge, triangle) when the last untangling began (a creased garment is
+  // untangled again after its round of stiffer bending) and at its last pass, and the passes
+  // made in all.
   int initial_contacts = 0, final_contacts = 0, untangle_passes = 0;
   double seconds = 0.0;
   double final_energy = 0.0;

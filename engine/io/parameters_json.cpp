@@ -82,6 +82,8 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_gravity_factor", p.post_process_gravity_factor);
   visit("post_process_compression_factor", p.post_process_compression_factor);
   visit("post_process_bending_factor", p.post_process_bending_factor);
+  visit("post_process_fold_iterations", p.post_process_fold_iterations);
+  visit("post_process_fold_bending_factor", p.post_process_fold_bending_factor);
   visit("post_process_body_buffer", p.post_process_body_buffer);
   visit("post_process_edge_repulsion_factor", p.post_process_edge_repulsion_factor);
   visit("post_process_leg_separation_factor", p.post_process_leg_separation_factor);
@@ -173,6 +175,8 @@ void apply_parameters_json(const std::string& json_text, const std::string& sour
                       "must be more than 0 and at most 1");
   if (!(parameters.post_process_bending_factor > 0.0))
     throw_input_error(source, "post_process_bending_factor", "must be more than 0");
+  if (!(parameters.post_process_fold_bending_factor > 0.0))
+    throw_input_error(source, "post_process_fold_bending_factor", "must be more than 0");
   if (!(parameters.post_process_strain_limit >= 0.0))
     throw_input_error(source, "post_process_strain_limit", "must be at least 0");
   if (!(parameters.post_process_strain_limit_factor >= 1.0))

@@ -15,7 +15,9 @@
 //   skirt whose waistband folds through itself without it;
 // - the longer settle of a garment narrowly over-stretched after the first iterations, on
 //   gc_0279 (a skirt whose front waistband is left just past 20 % strain), and its absence on
-//   gc_0195, which settles clean within them.
+//   gc_0195, which settles clean within them;
+// - the round with stiffer bending of a garment left with folds at the end, on gc_0485 (a skirt
+//   of ten panels whose narrow front panel keeps a crease).
 
 #include <tbb/global_control.h>
 
@@ -27,6 +29,7 @@
 #include "engine/arrange/session.h"
 #include "engine/core/mesh_topology.h"
 #include "engine/quality/garment_metrics.h"
+#include "engine/quality/verdict.h"
 #include "support/test_environment.h"
 #include "support/test_paths.h"
 
@@ -204,6 +207,7 @@ class PostProcessTest : public QObject {
         load_scene(test::test_data("patterns/basic_tee__tee.json"),
                    test::test_data("bodies/f_smpl_average_A40.obj"));
     ArrangementParameters parameters;
+    parameters.post_process_fold_iterations = 0;  // its stiffer bending would smooth the creases
     const Outcome stiff = run(scene, parameters);
     parameters.post_process_bending_factor = 1.0;
     const Outcome soft = run(scene, parameters);
@@ -233,6 +237,7 @@ class PostProcessTest : public QObject {
         load_scene(test::test_data("patterns/gc_0195_specification.json"),
                    test::test_data("bodies/m_smpl_average_A40.obj"));
     ArrangementParameters parameters;
+    parameters.post_process_fold_iterations = 0;  // its stiffer bending would smooth the folds
     const Outcome repelled = run(scene, parameters);
     parameters.post_process_own_layer_repulsion_factor = 0.0;
     const Outcome free = run(scene, parameters);
@@ -264,6 +269,7 @@ class PostProcessTest : public QObject {
     // At the arrangement's bending: the post-process's stiffer bending alone keeps these legs to
     // within 8 mm of the plane (23 vertices across), a case the barrier is not needed for.
     parameters.post_process_bending_factor = 1.0;
+    parameters.post_process_fold_iterations = 0;  // nor the round with stiffer bending
     const Outcome separated = run(scene, parameters);
     parameters.post_process_leg_separation_factor = 0.0;
     const Outcome overlapping = run(scene, parameters);
@@ -352,6 +358,29 @@ class PostProcessTest : public QObject {
       QVERIFY(metrics.max_seam_gap_m <= 0.005);
       QCOMPARE(settled.post_process_iterations, first);
     }
+  }
+
+  void foldsLeftAtTheEndSettleWithStifferBending() {
+    if (test::sanitizer_build())
+      QSKIP("a sanitizer build: whole sessions at full budgets are checked in the Release run");
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    // gc_0485 on its body, f_smpl_average_A40.
+    const std::shared_ptr<const Scene> scene =
+        load_scene(test::test_data("patterns/gc_0485_specification.json"),
+                   test::test_data("bodies/f_smpl_average_A40.obj"));
+    ArrangementParameters parameters;
+    parameters.revisit_seconds = 1e9;  // the same work however fast the machine runs
+    const Outcome with_round = run(scene, parameters);
+    parameters.post_process_fold_iterations = 0;
+    const Outcome without = run(scene, parameters);
+    QCOMPARE(with_round.arranged, without.arranged);
+    const auto [before, after] = measure_post_processed(*scene, without, with_round);
+    qInfo("%d folds after %d iterations, %d after %d", before.folds,
+          without.post_process_iterations, after.folds, with_round.post_process_iterations);
+    QVERIFY(before.folds > 0);
+    QCOMPARE(after.folds, 0);
+    QVERIFY(with_round.post_process_iterations > without.post_process_iterations);
+    QVERIFY(judge_garment(*scene->garment, after).ok());
   }
 };
 
