@@ -168,12 +168,12 @@ bool narrowly_stretched_or_open(const Garment& garment, const Eigen::MatrixX2i& 
 }
 
 // Whether two neighbour triangles of one piece face apart, as the verdict counts folds
-// (garment_metrics.h): normals with dot < -0.5. mesh: the unwelded pieces' edges.
+// (garment_metrics.h). mesh: the unwelded pieces' edges.
 bool has_folds(const Garment& garment, const MeshEdges& mesh, const Eigen::MatrixX3d& positions) {
   const Eigen::MatrixX3d normals = triangle_normals(positions, garment.triangles);
   for (Eigen::Index e = 0; e < mesh.edges.rows(); ++e) {
     const int t0 = mesh.edge_triangles(e, 0), t1 = mesh.edge_triangles(e, 1);
-    if (t1 >= 0 && normals.row(t0).dot(normals.row(t1)) < -0.5) return true;
+    if (t1 >= 0 && normals.row(t0).dot(normals.row(t1)) < kFoldNormalDot) return true;
   }
   return false;
 }

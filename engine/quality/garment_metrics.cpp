@@ -70,7 +70,7 @@ GarmentChecker::GarmentChecker(const Garment& garment, const BodyReference* body
                         garment.rest_positions.row(edges_.edges(e, 1)))
                            .norm();
   welded_ = weld_seams_and_darts(garment);
-  openings_ = garment_openings(garment, welded_);
+  openings_ = garment_openings(garment, edges_, welded_);
 
   Eigen::MatrixX3i welded_triangles(garment.triangle_count(), 3);
   for (int t = 0; t < garment.triangle_count(); ++t)
@@ -121,7 +121,7 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
     const int t0 = edges_.edge_triangles(e, 0), t1 = edges_.edge_triangles(e, 1);
     if (t1 < 0 || !normal_dot(normals, t0, t1, dot)) continue;
     metrics.theta_in = std::min(metrics.theta_in, dot);
-    if (dot < -0.5) {
+    if (dot < kFoldNormalDot) {
       ++metrics.folds;
       ++metrics.piece_folds[garment_.triangle_piece(t0)];
     }

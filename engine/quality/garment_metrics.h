@@ -36,6 +36,9 @@
 
 namespace garment {
 
+// Neighbour triangles inside a piece whose normals' dot is below this make a fold.
+constexpr double kFoldNormalDot = -0.5;
+
 // A body prepared for checking garments against it; build once and share.
 struct BodyReference {
   explicit BodyReference(const BodyMesh& body) : mesh(body), surface(mesh), axes(body_axes(mesh)) {}

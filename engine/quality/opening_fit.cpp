@@ -6,7 +6,6 @@
 #include <set>
 
 #include "engine/body/body_cross_sections.h"
-#include "engine/core/mesh_topology.h"
 
 namespace garment {
 namespace {
@@ -32,8 +31,8 @@ bool inside_polygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Ve
 
 }  // namespace
 
-std::vector<Opening> garment_openings(const Garment& garment, const Eigen::VectorXi& welded) {
-  const MeshEdges mesh = build_mesh_edges(garment.triangles, garment.vertex_count());
+std::vector<Opening> garment_openings(const Garment& garment, const MeshEdges& mesh,
+                                      const Eigen::VectorXi& welded) {
   std::vector<BoundaryEdge> boundary;
   std::map<std::pair<int, int>, int> welded_edge_count;
   for (Eigen::Index e = 0; e < mesh.edges.rows(); ++e) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/body/body_mesh.h"
+#include "engine/core/mesh_topology.h"
 #include "engine/pattern/garment_mesh.h"
 
 namespace garment {
@@ -25,7 +26,9 @@ struct Opening {
 // The closed boundary loops of the garment with every vertex class of `welded` (#V, e.g.
 // weld_seams_and_darts) made one point: piece boundary edges that no other boundary edge meets
 // after welding. Boundary paths that do not close (a non-manifold junction) are left out.
-std::vector<Opening> garment_openings(const Garment& garment, const Eigen::VectorXi& welded);
+// mesh: build_mesh_edges of the garment's triangles.
+std::vector<Opening> garment_openings(const Garment& garment, const MeshEdges& mesh,
+                                      const Eigen::VectorXi& welded);
 
 // What a tape round the body inside the opening reads: the body's section by the opening's
 // least-squares plane, keeping the points whose projection falls inside the projected loop (even

@@ -60,6 +60,11 @@ Eigen::MatrixX3d ring(double radius, double centre_x, double tilt, int count) {
   return points;
 }
 
+std::vector<Opening> openings_of(const Garment& garment) {
+  return garment_openings(garment, build_mesh_edges(garment.triangles, garment.vertex_count()),
+                          weld_seams_and_darts(garment));
+}
+
 Opening whole_ring(int count) {
   Opening opening;
   for (int k = 0; k < count; ++k)
@@ -83,7 +88,7 @@ class OpeningFitTest : public QObject {
   void tube_rings_and_flap_outline_are_the_openings() {
     const double half_round = std::numbers::pi * 0.25;
     const Garment garment = tube_and_flap(half_round);
-    const std::vector<Opening> openings = garment_openings(garment, weld_seams_and_darts(garment));
+    const std::vector<Opening> openings = openings_of(garment);
     QCOMPARE(openings.size(), std::size_t{3});
     int rings = 0;
     for (const Opening& opening : openings) {
@@ -102,7 +107,7 @@ class OpeningFitTest : public QObject {
   void unsewn_tube_halves_open_all_round() {
     Garment garment = grid_garment({{"front", 0.4, 0.4, 21, 11}, {"back", 0.4, 0.4, 21, 11}});
     sew_right_to_left(garment, kFront, kBack);  // one side only: one loop round both halves
-    const std::vector<Opening> openings = garment_openings(garment, weld_seams_and_darts(garment));
+    const std::vector<Opening> openings = openings_of(garment);
     QCOMPARE(openings.size(), std::size_t{1});
     QVERIFY(std::abs(openings.front().rest_length_m - 2.4) < 1e-9);  // a 0.8 × 0.4 outline
   }
@@ -110,7 +115,7 @@ class OpeningFitTest : public QObject {
   void girth_inside_rings_round_the_body() {
     const Garment garment = tube_and_flap(std::numbers::pi * 0.25);
     const Eigen::MatrixX3d positions = tube_state(garment, 0.25, 1.0);
-    for (const Opening& opening : garment_openings(garment, weld_seams_and_darts(garment))) {
+    for (const Opening& opening : openings_of(garment)) {
       const double girth = body_girth_inside(opening, positions, body_);
       if (opening.pieces.front() == kFlap)
         QCOMPARE(girth, 0.0);
@@ -170,7 +175,7 @@ class OpeningFitTest : public QObject {
     const Garment garment = build_garment(load_pattern(std::filesystem::path(GARMENT_TEST_DATA) /
                                                        "patterns" / "gc_0473_specification.json"));
     std::vector<std::vector<std::string>> found;
-    for (const Opening& opening : garment_openings(garment, weld_seams_and_darts(garment))) {
+    for (const Opening& opening : openings_of(garment)) {
       std::vector<std::string> names;
       for (const int piece : opening.pieces)
         names.push_back(garment.pieces[piece].name);
