@@ -1,11 +1,15 @@
 #include "engine/arrange/leg_tubes.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace garment {
 
 namespace {
+
+// Least share of a tube's cloth in each quadrant round its leg's axis.
+constexpr double kQuadrantShare = 0.05;
 
 // Where the leg's axis is at height y.
 Eigen::Vector3d axis_point(const BodyAxis& leg, double y) {
@@ -47,21 +51,22 @@ LegTubes tubes_below(const Garment& garment, const GarmentGraph& graph,
         }
     }
     int positive = 0;
-    Eigen::Vector3d lowest = positions.row(component.front()).transpose(), highest = lowest;
-    for (int v : component) {
+    for (int v : component)
       positive += positions(v, 0) > centre_x;
-      lowest = lowest.cwiseMin(positions.row(v).transpose());
-      highest = highest.cwiseMax(positions.row(v).transpose());
-    }
     const double count = static_cast<double>(component.size());
-    // A tube goes round its leg: in front of and behind its axis, and not across to the other's.
-    const auto round = [&](const Eigen::Vector3d& own, const Eigen::Vector3d& other) {
-      return lowest.z() < own.z() && own.z() < highest.z() &&
-             !(lowest.x() <= other.x() && other.x() <= highest.x());
+    // A tube goes round its leg: its cloth lies in each quadrant round the leg's axis (left and
+    // right of it, in front and behind), seen from above. A flared leg may also reach across the
+    // other leg's axis; the bits of a skirt's hem below the level lie to one side of the axes, or
+    // in front or behind them only.
+    const auto round = [&](const Eigen::Vector3d& axis) {
+      std::array<int, 4> quadrant{};
+      for (int v : component)
+        ++quadrant[(positions(v, 0) > axis.x() ? 1 : 0) + (positions(v, 2) > axis.z() ? 2 : 0)];
+      return *std::min_element(quadrant.begin(), quadrant.end()) >= kQuadrantShare * count;
     };
     signed char side = 0;
-    if (positive >= one_sided * count && round(left_leg, right_leg)) side = 1;
-    if (count - positive >= one_sided * count && round(right_leg, left_leg)) side = -1;
+    if (positive >= one_sided * count && round(left_leg)) side = 1;
+    if (count - positive >= one_sided * count && round(right_leg)) side = -1;
     if (side == 0) continue;
     (side > 0 ? left : right) = true;
     for (int v : component) {

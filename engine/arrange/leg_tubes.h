@@ -8,11 +8,13 @@
 //
 // Found from the garment alone, not from panel names: the cloth below a level falls into pieces
 // connected through mesh edges and seams. Those that lie mostly on one side of the plane and go
-// round their leg (in front of and behind its axis, but not as far across as the other leg's
-// axis) are tubes, when there is one on each side. Loose trousers hang their crotch seam below the
-// body's crotch, so the level is searched downwards from just under the body's crotch until the
-// legs part. A skirt has no tubes: its pieces reach round both legs, or, below a slit, lie behind
-// or in front of them only.
+// round their leg (seen from above, cloth in each quadrant round its axis) are tubes, when there
+// is one on each side. A flared leg may reach across the other leg's axis: the flared cuff skirts
+// of gc_0284 and gc_0455 are arranged overlapping by 10-20 cm. Loose trousers hang their crotch
+// seam below the body's crotch, so the level is searched downwards from just under the body's
+// crotch until the legs part. A skirt has no tubes: its pieces reach round both legs, or, below a
+// slit, lie behind or in front of them only, and the bits of its hem that hang lower lie to one
+// side of a leg (taken for tubes, the barrier opened the seams of gc_0145 and gc_0179).
 
 #include <Eigen/Core>
 #include <vector>

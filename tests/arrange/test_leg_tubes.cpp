@@ -5,6 +5,11 @@
 //     function reads from positions alone;
 //   - the same with the right leg pushed 4 cm across the plane of symmetry, as a wide leg
 //     arranged over the other one: the sides stay;
+//   - the same with the right leg widened about its middle until it reaches across the left
+//     leg's axis, as the flared cuff skirts of gc_0284 and gc_0455 lie when arranged (their
+//     legs then crossed, 70-150 edges, and nothing else failed): the sides stay;
+//   - the same with the right leg moved 20 cm outwards, beside its leg instead of round it: no
+//     tubes;
 //   - the same with the crotch put just above where the legs part (the height below which no
 //     pair sewing a right piece to a left one has both ends): the tubes reach to within a
 //     centimetre of it, where a search in coarse steps stopped up to a step lower and left the
@@ -108,6 +113,34 @@ class LegTubesTest : public QObject {
       }
       QVERIFY(left > 50 && right > 50);
     }
+
+    Eigen::MatrixX3d widened = positions;
+    double middle = 0.0, reach = -std::numeric_limits<double>::infinity();
+    int right_count = 0;
+    for (int v = 0; v < garment.vertex_count(); ++v)
+      if (expected_side(v) < 0) {
+        middle += positions(v, 0);
+        ++right_count;
+      }
+    middle /= right_count;
+    for (int v = 0; v < garment.vertex_count(); ++v)
+      if (expected_side(v) < 0) {
+        widened(v, 0) = middle + 2.5 * (positions(v, 0) - middle);
+        if (widened(v, 1) < kCrotch - kClearance) reach = std::max(reach, widened(v, 0));
+      }
+    QVERIFY2(reach > body().left_leg.origin.x(), "the widened leg should reach the other's axis");
+    const LegTubes wide = find_leg_tubes(garment, graph, all, widened, body(), search());
+    QCOMPARE(int(wide.vertices.size()), below);
+    for (std::size_t i = 0; i < wide.vertices.size(); ++i)
+      QCOMPARE(wide.sides[i], expected_side(wide.vertices[i]));
+
+    // Cloth beside a leg, in front of and behind it but not round it, as the corners of a skirt's
+    // hem hang at its side seams, is no tube (the barrier opened the seams of gc_0145 and
+    // gc_0179, skirts whose hem corners were taken for tubes).
+    Eigen::MatrixX3d beside = positions;
+    for (int v = 0; v < garment.vertex_count(); ++v)
+      if (expected_side(v) < 0) beside(v, 0) -= 0.2;
+    QVERIFY(find_leg_tubes(garment, graph, all, beside, body(), search()).vertices.empty());
 
     // One leg alone has no partner to be kept from.
     std::vector<bool> right_only(garment.pieces.size(), false);
