@@ -69,6 +69,11 @@ Outcome run(const std::shared_ptr<const Scene>& scene, const ArrangementParamete
   return outcome;
 }
 
+// A pattern of tests/data/patterns on a body of tests/data/bodies.
+std::shared_ptr<const Scene> data_scene(const std::string& pattern, const std::string& body) {
+  return load_scene(test::test_data("patterns/" + pattern), test::test_data("bodies/" + body));
+}
+
 // The final garments of two outcomes, measured on the scene's body.
 std::pair<GarmentMetrics, GarmentMetrics> measure_post_processed(const Scene& scene,
                                                                  const Outcome& first,
@@ -94,8 +99,7 @@ class PostProcessTest : public QObject {
     // One thread: both sessions arrange the garment identically before their post-processes.
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     const std::shared_ptr<const Scene> scene =
-        load_scene(test::test_data("patterns/gc_0473_specification.json"),
-                   test::test_data("bodies/m_smpl_average_A40.obj"));
+        data_scene("gc_0473_specification.json", "m_smpl_average_A40.obj");
     ArrangementParameters parameters;
     parameters.post_process_untangle_passes = 0;  // the springs alone
     const Outcome limited = run(scene, parameters);
@@ -125,8 +129,7 @@ class PostProcessTest : public QObject {
       QSKIP("a sanitizer build: the edge repulsion runs there in every session's post-process");
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     const std::shared_ptr<const Scene> scene =
-        load_scene(test::test_data("patterns/gc_0473_specification.json"),
-                   test::test_data("bodies/m_smpl_average_A40.obj"));
+        data_scene("gc_0473_specification.json", "m_smpl_average_A40.obj");
     ArrangementParameters parameters;
     parameters.post_process_untangle_passes = 0;
     // The edge repulsion on the garment it was measured on: with the leg separation on, this band
@@ -177,8 +180,7 @@ class PostProcessTest : public QObject {
     // gc_0012 (a skirt in two panels and a two-part waistband) on f_smpl_average_A40: the front
     // and back panels, arranged in one batch, end the settle through each other at a side seam.
     const std::shared_ptr<const Scene> scene =
-        load_scene(test::test_data("patterns/gc_0012_specification.json"),
-                   test::test_data("bodies/f_smpl_average_A40.obj"));
+        data_scene("gc_0012_specification.json", "f_smpl_average_A40.obj");
     ArrangementParameters parameters;
     const Outcome untangled = run(scene, parameters);
     parameters.post_process_untangle_passes = 0;
@@ -204,8 +206,7 @@ class PostProcessTest : public QObject {
     // basic_tee__tee (Garment-Pattern-Generator) on f_smpl_average_A40: with the arrangement's
     // bending, its sleeves and back crease where gravity and the strain limit squeeze them.
     const std::shared_ptr<const Scene> scene =
-        load_scene(test::test_data("patterns/basic_tee__tee.json"),
-                   test::test_data("bodies/f_smpl_average_A40.obj"));
+        data_scene("basic_tee__tee.json", "f_smpl_average_A40.obj");
     ArrangementParameters parameters;
     parameters.post_process_fold_iterations = 0;  // its stiffer bending would smooth the creases
     const Outcome stiff = run(scene, parameters);
@@ -234,8 +235,7 @@ class PostProcessTest : public QObject {
     // its seed, down and over itself (without the repulsion, 19 folds in the waistband and 3
     // cloth edges crossing; with the earlier start of the skirt, 46 folds and 40 edges).
     const std::shared_ptr<const Scene> scene =
-        load_scene(test::test_data("patterns/gc_0195_specification.json"),
-                   test::test_data("bodies/m_smpl_average_A40.obj"));
+        data_scene("gc_0195_specification.json", "m_smpl_average_A40.obj");
     ArrangementParameters parameters;
     parameters.post_process_fold_iterations = 0;  // its stiffer bending would smooth the folds
     const Outcome repelled = run(scene, parameters);
@@ -263,8 +263,7 @@ class PostProcessTest : public QObject {
     // gc_0431 on its body, m_smpl_average_A40: the legs' back panels meet across the plane of
     // symmetry below the crotch, where no body parts them.
     const std::shared_ptr<const Scene> scene =
-        load_scene(test::test_data("patterns/gc_0431_specification.json"),
-                   test::test_data("bodies/m_smpl_average_A40.obj"));
+        data_scene("gc_0431_specification.json", "m_smpl_average_A40.obj");
     ArrangementParameters parameters;
     // At the arrangement's bending: the post-process's stiffer bending alone keeps these legs to
     // within 8 mm of the plane (23 vertices across), a case the barrier is not needed for.
@@ -328,8 +327,7 @@ class PostProcessTest : public QObject {
       // gc_0279 on its body, m_smpl_average_A40: a skirt of 14 panels under a waistband the first
       // iterations leave past the verdict's 20 % strain.
       const std::shared_ptr<const Scene> scene =
-          load_scene(test::test_data("patterns/gc_0279_specification.json"),
-                     test::test_data("bodies/m_smpl_average_A40.obj"));
+          data_scene("gc_0279_specification.json", "m_smpl_average_A40.obj");
       ArrangementParameters parameters;
       const Outcome longer = run(scene, parameters);
       parameters.post_process_extra_iterations = 0;
@@ -350,8 +348,7 @@ class PostProcessTest : public QObject {
     {
       // gc_0195 on m_smpl_average_A40 settles clean within the first iterations: no more.
       const std::shared_ptr<const Scene> scene =
-          load_scene(test::test_data("patterns/gc_0195_specification.json"),
-                     test::test_data("bodies/m_smpl_average_A40.obj"));
+          data_scene("gc_0195_specification.json", "m_smpl_average_A40.obj");
       const Outcome settled = run(scene, defaults);
       const auto [metrics, same] = measure_post_processed(*scene, settled, settled);
       QVERIFY(metrics.max_strain <= 0.2);
@@ -366,8 +363,7 @@ class PostProcessTest : public QObject {
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     // gc_0485 on its body, f_smpl_average_A40.
     const std::shared_ptr<const Scene> scene =
-        load_scene(test::test_data("patterns/gc_0485_specification.json"),
-                   test::test_data("bodies/f_smpl_average_A40.obj"));
+        data_scene("gc_0485_specification.json", "f_smpl_average_A40.obj");
     ArrangementParameters parameters;
     parameters.revisit_seconds = 1e9;  // the same work however fast the machine runs
     const Outcome with_round = run(scene, parameters);
