@@ -46,6 +46,11 @@ int body_command(const std::vector<std::string>& args) {
                          {"hips", marks.hips},   {"waist", marks.waist},
                          {"bust", marks.bust},   {"armpits", marks.armpits},
                          {"neck", marks.neck},   {"top", marks.top}};
+  // The tape round the torso at the three landmarks: what a band or a bodice must reach round.
+  const BodySlicer slicer(body.mesh);
+  const auto girth = [&](double height) { return torso_girth(slicer, marks.centre_x, height); };
+  report["torso_girths_m"] = {
+      {"hips", girth(marks.hips)}, {"waist", girth(marks.waist)}, {"bust", girth(marks.bust)}};
   report["axes"] = {{"torso", axis_json(marks.torso)},
                     {"left_arm", axis_json(marks.left_arm)},
                     {"right_arm", axis_json(marks.right_arm)},
@@ -84,6 +89,10 @@ int body_command(const std::vector<std::string>& args) {
       "\nlandmark heights (m): crotch %.3f  hips %.3f  waist %.3f  bust %.3f  armpits %.3f"
       "  neck %.3f\n",
       marks.crotch, marks.hips, marks.waist, marks.bust, marks.armpits, marks.neck);
+  const nlohmann::ordered_json& girths = report["torso_girths_m"];
+  std::printf("torso girths (cm, a tape round the torso): hips %.1f  waist %.1f  bust %.1f\n",
+              100.0 * girths["hips"].get<double>(), 100.0 * girths["waist"].get<double>(),
+              100.0 * girths["bust"].get<double>());
   std::printf("\naxes                origin                     direction               length\n");
   for (const auto& [name, axis] : report["axes"].items())
     std::printf("  %-10s (%6.3f %6.3f %6.3f)   (%6.3f %6.3f %6.3f)   %6.3f\n", name.c_str(),

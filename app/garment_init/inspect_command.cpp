@@ -5,7 +5,10 @@
 
 #include "command_line.h"
 #include "commands.h"
+#include "engine/core/mesh_topology.h"
 #include "engine/pattern/garment_mesh.h"
+#include "engine/quality/garment_metrics.h"
+#include "engine/quality/opening_fit.h"
 
 namespace garment::cli {
 namespace {
@@ -47,6 +50,17 @@ int inspect_command(const std::vector<std::string>& args) {
   report["darts"] = nlohmann::json::array();
   for (const StitchPairs& range : garment.darts)
     report["darts"].push_back(stitch_json(garment, range));
+  // The openings of the sewn garment with their rest lengths: set against the body's girths
+  // (`garment-init body`), they tell before any arrangement whether a band can go round it.
+  report["openings"] = nlohmann::json::array();
+  for (const Opening& opening :
+       garment_openings(garment, build_mesh_edges(garment.triangles, garment.vertex_count()),
+                        weld_seams_and_darts(garment))) {
+    nlohmann::json pieces = nlohmann::json::array();
+    for (int piece : opening.pieces)
+      pieces.push_back(garment.pieces[piece].name);
+    report["openings"].push_back({{"pieces", pieces}, {"rest_length_m", opening.rest_length_m}});
+  }
   report["vertices"] = garment.vertex_count();
   report["triangles"] = garment.triangle_count();
   if (line.has("--json")) {
@@ -78,6 +92,15 @@ int inspect_command(const std::vector<std::string>& args) {
   };
   print_stitches("stitches (panel:edge)", report["stitches"]);
   print_stitches("darts (panel:edge)", report["darts"]);
+  if (!report["openings"].empty()) std::printf("\nopenings when sewn (rest length)\n");
+  for (const auto& opening : report["openings"]) {
+    std::string pieces;
+    for (const auto& piece : opening["pieces"]) {
+      if (!pieces.empty()) pieces += ' ';
+      pieces += piece.get<std::string>();
+    }
+    std::printf("  %7.1f cm  %s\n", 100.0 * opening["rest_length_m"].get<double>(), pieces.c_str());
+  }
   std::printf("\ntotal: %d vertices, %d triangles\n", garment.vertex_count(),
               garment.triangle_count());
   return kSuccess;

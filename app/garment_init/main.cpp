@@ -19,9 +19,11 @@ const Command kCommands[] = {
     {"inspect", "inspect PATTERN.json [--json] [--edge-length M]",
      "Imports and meshes a GarmentCode pattern. Prints per piece its name, vertices, triangles "
      "and\n"
-     "area (m²); per stitch its two sides and number of vertex pairs; darts; totals. --json prints "
+     "area (m²); per stitch its two sides and number of vertex pairs; darts; the openings of the "
+     "sewn\n"
+     "garment (waistbands, cuffs, necklines, hems) with their rest lengths; totals. --json prints "
      "one\n"
-     "object {pieces, stitches, darts, vertices, triangles}.",
+     "object {pieces, stitches, darts, openings, vertices, triangles}.",
      garment::cli::inspect_command},
     {"run",
      "run PATTERN.json [--body BODY.obj] -o OUT.obj [--glb OUT.glb] [--report R.json] "
@@ -64,13 +66,14 @@ const Command kCommands[] = {
     {"body", "body [BODY.obj] [--json] [--spacing M] [--no-cache]",
      "Loads a body (default: the bundled resources/bodies/mean_all.obj): OBJ with triangles or\n"
      "polygons, metres or centimetres (detected); closed, manifold surface required. Prints its\n"
-     "size, landmark heights (crotch, hips, waist, bust, armpits, neck), torso/arm/leg axes, the "
-     "15\n"
+     "size, landmark heights (crotch, hips, waist, bust, armpits, neck), the torso's girths at\n"
+     "hips, waist (its narrowest) and bust, torso/arm/leg axes, the 15\n"
      "seed locations (name, surface cylinder|plane, centre, axis or normal, size) and the signed\n"
      "distance field (spacing, default 0.006 m; build time; whether it came from the cache in\n"
      "$XDG_CACHE_HOME/garment-studio). BODY.locations.json beside the OBJ overrides landmarks, "
      "axes\n"
-     "and locations. --json prints {vertices, triangles, height_m, landmarks, axes,\n"
+     "and locations. --json prints {vertices, triangles, height_m, landmarks, torso_girths_m, "
+     "axes,\n"
      "locations:[{name, center, axis, surface, ...}], sdf:{spacing_m, build_seconds, cached}}.",
      garment::cli::body_command},
     {"check",

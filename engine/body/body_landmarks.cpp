@@ -80,6 +80,12 @@ const SectionLoop* torso_loop(const std::vector<SectionLoop>& loops, double cent
   return nullptr;
 }
 
+double torso_girth(const BodySlicer& slicer, double centre_x, double height) {
+  const std::vector<SectionLoop> loops = slicer.section(height);
+  const SectionLoop* torso = torso_loop(loops, centre_x);
+  return torso ? torso->hull_perimeter : 0.0;
+}
+
 BodyLandmarks find_body_landmarks(const BodyMesh& body, const BodySlicer& slicer) {
   const auto fail = [&](const std::string& what) {
     throw_input_error(body.source, "body landmarks",
@@ -166,11 +172,7 @@ BodyLandmarks find_body_landmarks(const BodyMesh& body, const BodySlicer& slicer
   // circumference has grown back to 1.25 × that minimum.
   const std::optional<double> narrowest = extreme(high_armpit + 0.03, marks.top - 0.15, false);
   if (!narrowest) fail("the neck");
-  const auto torso_perimeter = [&](double y) {
-    const std::vector<SectionLoop> loops = slicer.section(y);
-    const SectionLoop* torso = torso_loop(loops, centre);
-    return torso ? torso->hull_perimeter : 0.0;
-  };
+  const auto torso_perimeter = [&](double y) { return torso_girth(slicer, centre, y); };
   const double narrowest_perimeter = torso_perimeter(*narrowest);
   const auto wider = [&](double y) { return torso_perimeter(y) > 1.25 * narrowest_perimeter; };
   std::optional<double> neck;

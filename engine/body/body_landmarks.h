@@ -42,4 +42,10 @@ BodyLandmarks find_body_landmarks(const BodyMesh& body, const BodySlicer& slicer
 // The loop of the torso in a section: the largest loop that spans the plane of symmetry, or null.
 const SectionLoop* torso_loop(const std::vector<SectionLoop>& loops, double centre_x);
 
+// What a tailor's tape round the torso reads at `height`: the convex hull perimeter of the torso's
+// loop in the horizontal section there, m (0 where the section has no torso loop). At the waist
+// landmark it is the narrowest the torso gets between crotch and armpits (as searched above), so
+// a band shorter than it must stretch wherever it sits round the torso.
+double torso_girth(const BodySlicer& slicer, double centre_x, double height);
+
 }  // namespace garment

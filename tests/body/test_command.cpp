@@ -1,4 +1,5 @@
-// garment-init body: the report of a body, and bad bodies refused with exit status 1.
+// garment-init body: the report of a body (with the torso's girths, against the body's own
+// measurement file), and bad bodies refused with exit status 1.
 
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -57,10 +58,29 @@ class BodyCommandTest : public QObject {
     }
   }
 
+  // The tape round the torso at hips, waist and bust, against the measurements the body was made
+  // with (resources/bodies/mean_all.yaml, GarmentCode's: hips 103.5, waist 84.3, bust 99.8 cm),
+  // and the waist the narrowest of the three.
+  void torso_girths_match_the_measurement_file() {
+    const Run result = run({"body", "--json", "--spacing", "0.02"});
+    QVERIFY2(result.exit_code == 0, result.err.constData());
+    const QJsonObject girths =
+        QJsonDocument::fromJson(result.out).object()["torso_girths_m"].toObject();
+    const double hips = girths["hips"].toDouble(), waist = girths["waist"].toDouble(),
+                 bust = girths["bust"].toDouble();
+    qInfo("hips %.3f waist %.3f bust %.3f m", hips, waist, bust);
+    for (const auto& [measured, expected] :
+         {std::pair{hips, 1.03478}, std::pair{waist, 0.843338}, std::pair{bust, 0.998407}})
+      QVERIFY2(std::abs(measured - expected) <= 0.05 * expected,
+               qPrintable(QString("%1 m, file %2 m").arg(measured).arg(expected)));
+    QVERIFY(waist < hips && waist < bust);
+  }
+
   void text_report_names_the_locations() {
     const Run result = run({"body", "--spacing", "0.02", "--no-cache"});
     QVERIFY2(result.exit_code == 0, result.err.constData());
-    for (const char* name : {"neck_front", "chest_back_left", "pelvis", "landmark heights"})
+    for (const char* name :
+         {"neck_front", "chest_back_left", "pelvis", "landmark heights", "torso girths"})
       QVERIFY2(result.out.contains(name), name);
   }
 

@@ -50,12 +50,6 @@ std::map<std::string, double> measurements(const std::filesystem::path& yaml) {
   return values;
 }
 
-double tape_measure(const BodySlicer& slicer, const BodyLandmarks& marks, double height) {
-  const std::vector<SectionLoop> loops = slicer.section(height);
-  const SectionLoop* torso = torso_loop(loops, marks.centre_x);
-  return torso ? torso->hull_perimeter : 0.0;
-}
-
 }  // namespace
 
 class BodyLocationsTest : public QObject {
@@ -104,7 +98,7 @@ class BodyLocationsTest : public QObject {
                                          {"bust", marks.bust},
                                          {"hips", marks.hips}}) {
         QVERIFY2(yaml.count(name), qPrintable(QString::fromStdString(named.yaml.string())));
-        const double measured = 100.0 * tape_measure(slicer, marks, height);
+        const double measured = 100.0 * torso_girth(slicer, marks.centre_x, height);
         const double expected = yaml.at(name);
         const QString what = QString("%1 %2: %3 cm at %4 m, file %5 cm")
                                  .arg(QString::fromStdString(named.name))
@@ -115,7 +109,8 @@ class BodyLocationsTest : public QObject {
         qInfo().noquote() << what;
         if (named.name == "m_smpl_average_A40" && name == "waist") {
           for (double y = marks.hips; y <= marks.bust; y += 0.005)
-            QVERIFY2(100.0 * tape_measure(slicer, marks, y) >= measured - 0.01, qPrintable(what));
+            QVERIFY2(100.0 * torso_girth(slicer, marks.centre_x, y) >= measured - 0.01,
+                     qPrintable(what));
           continue;
         }
         QVERIFY2(std::abs(measured - expected) <= 0.10 * expected, qPrintable(what));
@@ -178,7 +173,7 @@ class BodyLocationsTest : public QObject {
       QVERIFY(std::abs(body.location("neck").center.y() - m.neck) < 0.03);
       // A cylinder encloses its section: the body at its radius is outside.
       const BodyLocation& waist = body.location("waist");
-      QVERIFY(waist.radius > 0.5 * tape_measure(BodySlicer(body.mesh), m, m.waist) / M_PI);
+      QVERIFY(waist.radius > 0.5 * torso_girth(BodySlicer(body.mesh), m.centre_x, m.waist) / M_PI);
     }
   }
 
