@@ -179,6 +179,13 @@ struct ArrangementParameters {
   // the 202 of the 500 GarmentCode patterns that ended with crossings: 15 solver iterations per
   // pass undid each pass (gc_0072: 9 contacts, 13 after 40 passes), 3 let 40 garments come apart.
   int post_process_untangle_passes = 40;
+  // No untangling pass starts once the session has computed this long (seconds, as
+  // revisit_seconds): passes over a large garment are slow, and a garment may take 30 s in all.
+  // gc_0135 (21,303 vertices) enters them at 18.6 s, still tangled after the 300 iterations, and
+  // spent 9.4 s on 32 passes that left its 101 crossing edges as they were (28.1 s end to end).
+  // Of the 26 of the 500 GarmentCode patterns that untangling frees, the slowest (gc_0133) ends its
+  // whole session at 14.7 s.
+  double post_process_untangle_seconds = 20.0;
   double post_process_untangle_step = 0.002;
   int post_process_untangle_iterations = 3;
   int post_process_untangle_patience = 10;

@@ -1,6 +1,7 @@
 #include "engine/arrange/post_process.h"
 
 #include <chrono>
+#include <functional>
 #include <numeric>
 
 #include "engine/arrange/leg_tubes.h"
@@ -28,12 +29,14 @@ constexpr int kUntangleRegionRings = 8;
 // Pieces still through each other after the settle (those of one batch, or a seed wrapped tangled:
 // the layering only orders batches) are pulled apart along their intersection contours
 // (untangle.h), a few solver iterations after each pass letting the cloth around them follow. The
-// passes stop once no contact is left, or when the count has not improved for a while; a garment
+// passes stop once no contact is left, when the count has not improved for a while, or once the
+// session has run post_process_untangle_seconds (session_seconds: its time so far); a garment
 // still tangled then gets back its positions from before the passes, which moved crossing
 // vertices only and would leave it worse elsewhere (folds, open seams) for nothing.
 void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vector<bool>& arranged,
               Objective& objective, SolverSettings settings, Eigen::MatrixX3d& positions,
-              Observer* observer, PostProcessReport& result) {
+              Observer* observer, PostProcessReport& result,
+              const std::function<double()>& session_seconds) {
   const Garment& garment = context.garment;
   const Eigen::VectorXi& welded = context.welded;
   const ArrangementParameters& parameters = context.parameters;
@@ -94,7 +97,8 @@ void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vec
   std::size_t fewest = contacts.size();
   for (int pass = 0, since_fewest = 0;
        pass < parameters.post_process_untangle_passes && !contacts.empty() &&
-       since_fewest < parameters.post_process_untangle_patience;
+       since_fewest < parameters.post_process_untangle_patience &&
+       session_seconds() < parameters.post_process_untangle_seconds;
        ++pass) {
     const Eigen::MatrixX3d displacement =
         contour_minimizing_displacement(positions, garment.triangles, mesh, vertex_piece, contacts,
@@ -300,7 +304,8 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   settings.stage = "post-process";
   settings.on_iterate = on_iterate;
   if (parameters.post_process_untangle_passes > 0 && solved.reason != StopReason::Cancelled)
-    untangle(context, mesh, arranged, objective, settings, positions, observer, result);
+    untangle(context, mesh, arranged, objective, settings, positions, observer, result,
+             seconds_so_far);
 
   // A creased garment would fail the verdict anyway: stiffer bending smooths its creases, and the
   // cloth it moves may come to cross, so it is untangled again.
@@ -313,7 +318,8 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
     result.iterations += solved.iterations;
     result.final_energy = solved.final_energy;
     if (parameters.post_process_untangle_passes > 0 && solved.reason != StopReason::Cancelled)
-      untangle(context, mesh, arranged, objective, settings, positions, observer, result);
+      untangle(context, mesh, arranged, objective, settings, positions, observer, result,
+               seconds_so_far);
   }
 
   // The shared potentials go back to their arrangement strengths.

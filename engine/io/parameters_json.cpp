@@ -91,6 +91,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_strain_limit", p.post_process_strain_limit);
   visit("post_process_strain_limit_factor", p.post_process_strain_limit_factor);
   visit("post_process_untangle_passes", p.post_process_untangle_passes);
+  visit("post_process_untangle_seconds", p.post_process_untangle_seconds);
   visit("post_process_untangle_step", p.post_process_untangle_step);
   visit("post_process_untangle_iterations", p.post_process_untangle_iterations);
   visit("post_process_untangle_patience", p.post_process_untangle_patience);

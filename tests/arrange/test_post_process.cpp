@@ -7,7 +7,8 @@
 // - the body buffer and the repulsion of points along edges (body_edge_repulsion_potential.h),
 //   on the same gc_0473: its snug waistband eases when it may lie closer to the body, and only
 //   the edge repulsion keeps edges from cutting into the body there;
-// - the untangling passes (untangle.h) on gc_0012, whose skirt panels cross at a side seam;
+// - the untangling passes (untangle.h) on gc_0012, whose skirt panels cross at a side seam, and
+//   none past their time bound;
 // - the post-process's stiffer bending on basic_tee__tee, whose sleeves fold without it;
 // - the leg separation (leg_tubes.h, side_barrier_potential.h) on gc_0431, trousers whose legs
 //   reach into each other's side between the body's legs without it;
@@ -53,6 +54,7 @@ struct Outcome {
   Eigen::MatrixX3d arranged;  // before the post-process
   Eigen::MatrixX3d final_positions;
   int post_process_iterations = 0;
+  int untangle_passes = 0;
 };
 
 Outcome run(const std::shared_ptr<const Scene>& scene, const ArrangementParameters& parameters) {
@@ -66,6 +68,7 @@ Outcome run(const std::shared_ptr<const Scene>& scene, const ArrangementParamete
   }
   outcome.final_positions = session.positions();
   outcome.post_process_iterations = session.report().post_process.iterations;
+  outcome.untangle_passes = session.report().post_process.untangle_passes;
   return outcome;
 }
 
@@ -197,6 +200,14 @@ class PostProcessTest : public QObject {
     // Pulled apart without tearing seams open or pushing cloth into the body.
     QVERIFY(after.max_seam_gap_m < 0.005);
     QCOMPARE(after.body_crossing_edges, 0);
+
+    // Past the untangling time bound no pass starts: the garment stays as the settle left it.
+    QVERIFY(untangled.untangle_passes > 0);
+    parameters.post_process_untangle_passes = ArrangementParameters().post_process_untangle_passes;
+    parameters.post_process_untangle_seconds = 0.0;
+    const Outcome late = run(scene, parameters);
+    QCOMPARE(late.untangle_passes, 0);
+    QCOMPARE(late.final_positions, settled.final_positions);
   }
 
   void stifferBendingKeepsSqueezedSleevesFromFolding() {
