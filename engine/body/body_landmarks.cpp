@@ -172,9 +172,10 @@ BodyLandmarks find_body_landmarks(const BodyMesh& body, const BodySlicer& slicer
   // circumference has grown back to 1.25 × that minimum.
   const std::optional<double> narrowest = extreme(high_armpit + 0.03, marks.top - 0.15, false);
   if (!narrowest) fail("the neck");
-  const auto torso_perimeter = [&](double y) { return torso_girth(slicer, centre, y); };
-  const double narrowest_perimeter = torso_perimeter(*narrowest);
-  const auto wider = [&](double y) { return torso_perimeter(y) > 1.25 * narrowest_perimeter; };
+  const double narrowest_perimeter = torso_girth(slicer, centre, *narrowest);
+  const auto wider = [&](double y) {
+    return torso_girth(slicer, centre, y) > 1.25 * narrowest_perimeter;
+  };
   std::optional<double> neck;
   for (double y = *narrowest; y > high_armpit && !neck; y -= kScanStep)
     if (wider(y - kScanStep)) neck = refine(y - kScanStep, y, wider);
