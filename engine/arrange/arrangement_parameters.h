@@ -72,12 +72,15 @@ struct ArrangementParameters {
   // 0218, 0249) and loses none. Undoing every grown batch past the threshold gained 5 and lost 3
   // (measured on an earlier version of the arrangement).
   double grown_strain_ratio = 1.5;
-  // Revisits stop once the session has computed this long (seconds, the session's own solve time,
-  // so a paused editor does not count): the batches left are arranged once each and the garment
-  // goes to the post-process. Measured on the 500 GarmentCode patterns: the slowest garment that
-  // ends clean spends 6.1 s; the 22 that spend over 9 s all fail with or without their late
-  // revisits, and the slowest of them took 27.6 s end to end instead of 31.8 s.
-  double revisit_seconds = 10.0;
+  // Revisits stop once the session has done this much work (free vertices × solver iterations,
+  // summed over its solves: SolveReport::work): the batches left are arranged once each and the
+  // garment goes to the post-process. A budget of work, not of seconds, so that the same input
+  // gives the same garment on an idle or a busy machine. It was 10 s of the session's solve time:
+  // on the 500 GarmentCode patterns the slowest garment that ends clean spent 6.1 s, and the 22
+  // that spent over 9 s all failed with or without their late revisits. One thread does 1.4 to
+  // 3.0 million vertex-iterations a second (CPU time of gc_0012, 0008 and 0440, tuning half): 20
+  // million is those 10 s at 2 million a second.
+  double revisit_work = 20e6;
 
   // §5.2 seed shape solve.
   int seed_iterations = 400;
@@ -90,7 +93,7 @@ struct ArrangementParameters {
   int post_process_iterations = 300;
   // Then, while the garment narrowly fails the verdict on strain or an open seam
   // (post_process.cpp), up to this many more, in rounds of 100 that stop once it passes them, and
-  // not past revisit_seconds of the session (the time bound): most garments settle clean within the
+  // not past revisit_work of the session (the work bound): most garments settle clean within the
   // first 300, and only the near misses pay for the longer settle.
   int post_process_extra_iterations = 600;
   double post_process_step = 0.004;
@@ -121,7 +124,7 @@ struct ArrangementParameters {
   double post_process_bending_factor = 5.0;
   // A garment that still has folds at the end (a crease of neighbour triangles facing apart, as
   // the verdict counts them) settles this many iterations more with bending this many times
-  // energy.bending_stiffness, then is untangled again, within revisit_seconds (0 iterations:
+  // energy.bending_stiffness, then is untangled again, within revisit_work (0 iterations:
   // off). Only garments that would fail on folds take it, so no clean garment changes; stiffer
   // bending throughout holds seams open (see post_process_bending_factor). Of the 500
   // GarmentCode patterns: 401 -> 408 clean (gc_0008, 0098, 0101, 0117, 0387, 0476, 0485), none
@@ -179,13 +182,14 @@ struct ArrangementParameters {
   // the 202 of the 500 GarmentCode patterns that ended with crossings: 15 solver iterations per
   // pass undid each pass (gc_0072: 9 contacts, 13 after 40 passes), 3 let 40 garments come apart.
   int post_process_untangle_passes = 40;
-  // No untangling pass starts once the session has computed this long (seconds, as
-  // revisit_seconds): passes over a large garment are slow, and a garment may take 30 s in all.
-  // gc_0135 (21,303 vertices) enters them at 18.6 s, still tangled after the 300 iterations, and
-  // spent 9.4 s on 32 passes that left its 101 crossing edges as they were (28.1 s end to end).
-  // Of the 26 of the 500 GarmentCode patterns that untangling frees, the slowest (gc_0133) ends its
-  // whole session at 14.7 s.
-  double post_process_untangle_seconds = 20.0;
+  // No untangling pass starts once the session has done this much work (as revisit_work): passes
+  // over a large garment are slow, and a garment may take 30 s in all. gc_0135 (21,303 vertices)
+  // entered them at 18.6 s, still tangled after the 300 iterations, and spent 9.4 s on 32 passes
+  // that left its 101 crossing edges as they were (28.1 s end to end). Of the 26 of the 500
+  // GarmentCode patterns that untangling frees, the slowest (gc_0133) ended its whole session at
+  // 14.7 s. It was 20 s of the session's solve time; as revisit_work, 2 million vertex-iterations
+  // stand for a second.
+  double post_process_untangle_work = 40e6;
   double post_process_untangle_step = 0.002;
   int post_process_untangle_iterations = 3;
   int post_process_untangle_patience = 10;

@@ -138,6 +138,7 @@ int BatchArrangement::solve_with(Objective& objective, int iterations, const cha
   settings.on_iterate = on_iterate;
   const SolveReport report = solve(objective, positions, settings, observer);
   record.iterations += report.iterations;
+  record.work += report.work;
   record.final_energy = report.final_energy;
   record.cancelled = report.reason == StopReason::Cancelled;
   return report.iterations;

@@ -25,6 +25,7 @@ struct StepRecord {
   ArrangeStep step = ArrangeStep::Align;
   int visit = 0;       // 0 on the first visit
   int iterations = 0;  // solver iterations of the step (all its solves)
+  double work = 0.0;   // free vertices × iterations of its solves (SolveReport::work)
   double seconds = 0.0;
   double final_energy = 0.0;
   bool cancelled = false;

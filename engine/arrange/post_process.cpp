@@ -30,13 +30,13 @@ constexpr int kUntangleRegionRings = 8;
 // the layering only orders batches) are pulled apart along their intersection contours
 // (untangle.h), a few solver iterations after each pass letting the cloth around them follow. The
 // passes stop once no contact is left, when the count has not improved for a while, or once the
-// session has run post_process_untangle_seconds (session_seconds: its time so far); a garment
+// session has done post_process_untangle_work (session_work: its work so far); a garment
 // still tangled then gets back its positions from before the passes, which moved crossing
 // vertices only and would leave it worse elsewhere (folds, open seams) for nothing.
 void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vector<bool>& arranged,
               Objective& objective, SolverSettings settings, Eigen::MatrixX3d& positions,
               Observer* observer, PostProcessReport& result,
-              const std::function<double()>& session_seconds) {
+              const std::function<double()>& session_work) {
   const Garment& garment = context.garment;
   const Eigen::VectorXi& welded = context.welded;
   const ArrangementParameters& parameters = context.parameters;
@@ -98,7 +98,7 @@ void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vec
   for (int pass = 0, since_fewest = 0;
        pass < parameters.post_process_untangle_passes && !contacts.empty() &&
        since_fewest < parameters.post_process_untangle_patience &&
-       session_seconds() < parameters.post_process_untangle_seconds;
+       session_work() < parameters.post_process_untangle_work;
        ++pass) {
     const Eigen::MatrixX3d displacement =
         contour_minimizing_displacement(positions, garment.triangles, mesh, vertex_piece, contacts,
@@ -109,6 +109,7 @@ void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vec
     ++result.untangle_passes;
     const SolveReport solved = solve(objective, positions, settings, observer);
     result.iterations += solved.iterations;
+    result.work += solved.work;
     result.final_energy = solved.final_energy;
     if (solved.reason == StopReason::Cancelled) break;
     contacts = arranged_contacts(region_edges, region_triangles);
@@ -133,6 +134,7 @@ void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vec
   settings.max_iterations = parameters.post_process_untangle_settle_iterations;
   const SolveReport solved = solve(objective, positions, settings, observer);
   result.iterations += solved.iterations;
+  result.work += solved.work;
   if (solved.reason != StopReason::Cancelled && arranged_contacts(all_edges, all_triangles).empty())
     result.final_energy = solved.final_energy;
   else
@@ -282,21 +284,20 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   quasi_newton.on_iterate = on_iterate;
   SolveReport solved = solve_quasi_newton(objective, positions, quasi_newton, observer);
   result.iterations = solved.iterations;
+  result.work = solved.work;
   result.final_energy = solved.final_energy;
   // Settling on while the garment narrowly fails the verdict on strain or an open seam, in rounds
-  // that stop as soon as it passes them, and only within the session's revisit time.
-  const auto seconds_so_far = [&] {
-    return report.seconds +
-           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
+  // that stop as soon as it passes them, and only within the session's revisit work.
+  const auto work_so_far = [&] { return report.work + result.work; };
   for (int extra = parameters.post_process_extra_iterations;
        extra > 0 && solved.reason != StopReason::Cancelled &&
-       seconds_so_far() < parameters.revisit_seconds &&
+       work_so_far() < parameters.revisit_work &&
        narrowly_stretched_or_open(garment, mesh.edges, arranged, positions);
        extra -= kExtraRound) {
     quasi_newton.max_iterations = std::min(extra, kExtraRound);
     solved = solve_quasi_newton(objective, positions, quasi_newton, observer);
     result.iterations += solved.iterations;
+    result.work += solved.work;
     result.final_energy = solved.final_energy;
   }
 
@@ -305,21 +306,22 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   settings.on_iterate = on_iterate;
   if (parameters.post_process_untangle_passes > 0 && solved.reason != StopReason::Cancelled)
     untangle(context, mesh, arranged, objective, settings, positions, observer, result,
-             seconds_so_far);
+             work_so_far);
 
   // A creased garment would fail the verdict anyway: stiffer bending smooths its creases, and the
   // cloth it moves may come to cross, so it is untangled again.
   if (parameters.post_process_fold_iterations > 0 && solved.reason != StopReason::Cancelled &&
-      seconds_so_far() < parameters.revisit_seconds && has_folds(garment, mesh, positions)) {
+      work_so_far() < parameters.revisit_work && has_folds(garment, mesh, positions)) {
     context.bending->set_stiffness(energy.bending_stiffness *
                                    parameters.post_process_fold_bending_factor);
     quasi_newton.max_iterations = parameters.post_process_fold_iterations;
     solved = solve_quasi_newton(objective, positions, quasi_newton, observer);
     result.iterations += solved.iterations;
+    result.work += solved.work;
     result.final_energy = solved.final_energy;
     if (parameters.post_process_untangle_passes > 0 && solved.reason != StopReason::Cancelled)
       untangle(context, mesh, arranged, objective, settings, positions, observer, result,
-               seconds_so_far);
+               work_so_far);
   }
 
   // The shared potentials go back to their arrangement strengths.

@@ -23,6 +23,7 @@ struct PostProcessReport {
   // untangled again after its round of stiffer bending) and at its last pass, and the passes
   // made in all.
   int initial_contacts = 0, final_contacts = 0, untangle_passes = 0;
+  double work = 0.0;  // free vertices × solver iterations (SolveReport::work)
   double seconds = 0.0;
   double final_energy = 0.0;
 };

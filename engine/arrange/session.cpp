@@ -190,7 +190,7 @@ void Session::run_seed(SessionObserver* observer) {
         state_.explicit_order.end());
   }
   state_.report.seed = plan;
-  state_.report.phases.push_back({Phase::Seed, -1, 0, shaped.iterations, shaped.seconds});
+  record_phase({Phase::Seed, -1, 0, shaped.iterations, shaped.work, shaped.seconds});
   state_.phase = Phase::Select;
 }
 
@@ -236,8 +236,8 @@ void Session::run_arrange_step(ArrangeStep step, SessionObserver* observer) {
   ForwardingObserver forward(observer);
   const StepRecord record = state_.batch->run(step, state_.visit, state_.positions, &forward,
                                               live_snapshots(observer, running, &iterations));
-  state_.report.phases.push_back(
-      {running, state_.batch_index, state_.visit, record.iterations, record.seconds});
+  record_phase(
+      {running, state_.batch_index, state_.visit, record.iterations, record.work, record.seconds});
   state_.report.batches[state_.batch_index].seconds += record.seconds;
   state_.phase = step == ArrangeStep::Align                     ? Phase::RemoveBodyIntersections
                  : step == ArrangeStep::RemoveBodyIntersections ? Phase::Refine
@@ -251,9 +251,9 @@ void Session::run_check() {
   const Revisit revisit =
       TerminationCheck::decide(record.check, options_.arrangement, state_.flatten_revisits,
                                state_.seam_revisited, state_.grown);
-  const bool out_of_time = state_.report.seconds > options_.arrangement.revisit_seconds;
-  if (revisit != Revisit::None && out_of_time) record.out_of_time = true;
-  bool revisiting = revisit != Revisit::None && !out_of_time;
+  const bool out_of_budget = state_.report.work > options_.arrangement.revisit_work;
+  if (revisit != Revisit::None && out_of_budget) record.out_of_budget = true;
+  bool revisiting = revisit != Revisit::None && !out_of_budget;
   if (revisiting && revisit == Revisit::Grow) {
     State::BeforeGrowth before{batch, state_.positions, record.check};
     if (batch.grow()) {
@@ -299,6 +299,11 @@ void Session::undo_harmful_growth() {
   state_.before_growth.reset();
 }
 
+void Session::record_phase(const PhaseRecord& record) {
+  state_.report.phases.push_back(record);
+  state_.report.work += record.work;
+}
+
 void Session::accept_batch() {
   for (int piece : state_.batch->pieces()) {
     state_.arranged[piece] = true;
@@ -318,7 +323,7 @@ void Session::run_post_process(SessionObserver* observer) {
   const PostProcessReport report =
       post_process(*context_, state_.report, state_.arranged, state_.positions, &forward,
                    live_snapshots(observer, Phase::PostProcess, &iterations));
-  state_.report.phases.push_back({Phase::PostProcess, -1, 0, report.iterations, report.seconds});
+  record_phase({Phase::PostProcess, -1, 0, report.iterations, report.work, report.seconds});
   state_.report.post_process = report;
   state_.phase = Phase::Done;
 }

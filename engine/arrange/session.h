@@ -47,13 +47,14 @@ struct PhaseRecord {
   int batch = -1;  // -1 for seed and post-process
   int visit = 0;
   int iterations = 0;
+  double work = 0.0;  // free vertices × solver iterations (SolveReport::work)
   double seconds = 0.0;
 };
 
 struct BatchRecord {
   std::vector<int> pieces;  // after any growth
   std::vector<std::string> revisits;
-  bool out_of_time = false;    // a revisit the check asked for was skipped (revisit_seconds)
+  bool out_of_budget = false;  // a revisit the check asked for was skipped (revisit_work)
   bool growth_undone = false;  // the batch grew, then was kept as before (grown_strain_ratio)
   BatchCheck check;            // the last check
   double seconds = 0.0;
@@ -65,6 +66,9 @@ struct SessionReport {
   std::vector<BatchRecord> batches;
   std::vector<PhaseRecord> phases;
   PostProcessReport post_process;  // once it has run
+  // The phases' work (PhaseRecord::work) so far: what the budgets are counted in. `seconds` is
+  // for people only; it depends on the machine and its load.
+  double work = 0.0;
   double seconds = 0.0;
   bool cancelled = false;
 };
@@ -149,6 +153,7 @@ class Session {
   void run_check();
   // Goes back to the batch as it was before it grew when growing stretched it worse.
   void undo_harmful_growth();
+  void record_phase(const PhaseRecord& record);  // appends it and counts its work
   void accept_batch();
   void run_post_process(SessionObserver* observer);
   void checkpoint(bool batch_complete);

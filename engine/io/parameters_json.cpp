@@ -72,7 +72,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("strain_threshold", p.strain_threshold);
   visit("max_flatten_revisits", p.max_flatten_revisits);
   visit("grown_strain_ratio", p.grown_strain_ratio);
-  visit("revisit_seconds", p.revisit_seconds);
+  visit("revisit_work", p.revisit_work);
   visit("seed_iterations", p.seed_iterations);
   visit("post_process_iterations", p.post_process_iterations);
   visit("post_process_extra_iterations", p.post_process_extra_iterations);
@@ -91,7 +91,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_strain_limit", p.post_process_strain_limit);
   visit("post_process_strain_limit_factor", p.post_process_strain_limit_factor);
   visit("post_process_untangle_passes", p.post_process_untangle_passes);
-  visit("post_process_untangle_seconds", p.post_process_untangle_seconds);
+  visit("post_process_untangle_work", p.post_process_untangle_work);
   visit("post_process_untangle_step", p.post_process_untangle_step);
   visit("post_process_untangle_iterations", p.post_process_untangle_iterations);
   visit("post_process_untangle_patience", p.post_process_untangle_patience);

@@ -45,7 +45,7 @@ std::string session_report_json(const Session& session, const GarmentMetrics& me
     json["batches"].push_back({{"pieces", piece_names(garment, batch.pieces)},
                                {"vertices", vertices},
                                {"revisits", batch.revisits},
-                               {"out_of_time", batch.out_of_time},
+                               {"out_of_budget", batch.out_of_budget},
                                {"growth_undone", batch.growth_undone},
                                {"theta_in", batch.check.theta_in},
                                {"theta_out", batch.check.theta_out},
@@ -63,6 +63,7 @@ std::string session_report_json(const Session& session, const GarmentMetrics& me
                       {"batch", phase.batch},
                       {"visit", phase.visit},
                       {"iterations", phase.iterations},
+                      {"work", phase.work},
                       {"seconds", phase.seconds}});
   }
   nlohmann::json per_phase = nlohmann::json::object();
@@ -78,6 +79,8 @@ std::string session_report_json(const Session& session, const GarmentMetrics& me
                           {"untangle_passes", report.post_process.untangle_passes},
                           {"contacts_before_untangling", report.post_process.initial_contacts},
                           {"contacts_after_untangling", report.post_process.final_contacts}};
+  // The work decides the budgets (ArrangementParameters::revisit_work); the seconds only tell.
+  json["work"] = report.work;
   json["seconds"] = report.seconds;
   json["cancelled"] = report.cancelled;
   json["quality"] = nlohmann::json::parse(quality_json(garment, metrics, verdict));

@@ -419,6 +419,7 @@ SeedShapeReport shape_seed(const Scene& scene, const SeedPlan& plan, const Energ
     const SolveReport solved =
         solve_seed_shape(scene, plan, energy, shaped, observer, on_iterate, options);
     iterations += solved.iterations;
+    report.work += solved.work;
     ++report.attempts;
     const double strain = strain_check.measure(seed_mask, shaped).max_strain;
     if (strain < report.max_strain) {

@@ -27,6 +27,7 @@ struct SeedShapeOptions {
 
 struct SeedShapeReport {
   int iterations = 0;
+  double work = 0.0;  // free vertices × iterations of its solves (SolveReport::work)
   double seconds = 0.0;
   double final_energy = 0.0;
   double max_strain = 0.0;  // of the seed's edges, as the termination check measures it

@@ -73,6 +73,8 @@ SolveReport solve(Objective& objective, Eigen::MatrixX3d& positions, const Solve
     report.final_energy = energy;
     report.gradient_norm = gradient_norm;
     positions = from_positions(x);
+    report.work = static_cast<double>(report.iterations) *
+                  static_cast<double>(assembler.free_vertices().size());
     report.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
     return report;

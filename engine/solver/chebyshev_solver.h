@@ -62,6 +62,9 @@ struct SolveReport {
   double gradient_norm = 0.0;          // N, at the returned positions
   int rollbacks = 0;
   double final_step_size = 0.0;  // α when the solve ended
+  // Free vertices × iterations: the solve's work, which decides budgets (revisit_work) the same
+  // way on an idle or a busy machine, where `seconds` would not.
+  double work = 0.0;
   double seconds = 0.0;
 };
 

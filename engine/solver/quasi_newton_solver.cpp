@@ -121,6 +121,7 @@ SolveReport solve_quasi_newton(Objective& objective, Eigen::MatrixX3d& positions
     report.final_energy = energy;
     report.gradient_norm = gradient.norm();
     positions = from_positions(x);
+    report.work = static_cast<double>(report.iterations) * n;
     report.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
     return report;

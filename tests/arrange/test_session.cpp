@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <thread>
 
 #include "engine/arrange/session.h"
 #include "engine/body/default_body.h"
@@ -221,31 +222,80 @@ class SessionTest : public QObject {
     QVERIFY(session.done());
   }
 
-  void revisits_stop_once_the_time_is_spent() {
+  void revisits_stop_once_the_work_is_spent() {
     // A θ_in threshold no batch can meet (normals' dots are at most 1): every check asks to
-    // flatten, which the session does while it has time and skips once it has none.
-    const auto run = [&](double revisit_seconds) {
+    // flatten, which the session does while it has work left and skips once it has none.
+    const auto run = [&](double revisit_work) {
       SessionOptions options = small_options();
       options.arrangement.theta_in_threshold = 2.0;
-      options.arrangement.revisit_seconds = revisit_seconds;
+      options.arrangement.revisit_work = revisit_work;
       Session session(scene_, options);
       session.run();
       return session.report();
     };
-    const SessionReport in_time = run(1e9);
-    const SessionReport out_of_time = run(0.0);
+    const SessionReport in_time = run(1e18);
+    const SessionReport out_of_budget = run(0.0);
     int revisited = 0, skipped = 0;
     for (const BatchRecord& batch : in_time.batches) {
       revisited += batch.revisits.empty() ? 0 : 1;
-      QVERIFY(!batch.out_of_time);
+      QVERIFY(!batch.out_of_budget);
     }
-    for (const BatchRecord& batch : out_of_time.batches) {
+    for (const BatchRecord& batch : out_of_budget.batches) {
       QVERIFY(batch.revisits.empty());
-      skipped += batch.out_of_time ? 1 : 0;
+      skipped += batch.out_of_budget ? 1 : 0;
     }
     QCOMPARE(revisited, static_cast<int>(in_time.batches.size()));
-    QCOMPARE(skipped, static_cast<int>(out_of_time.batches.size()));
-    QCOMPARE(out_of_time.order.size(), in_time.order.size());
+    QCOMPARE(skipped, static_cast<int>(out_of_budget.batches.size()));
+    QCOMPARE(out_of_budget.order.size(), in_time.order.size());
+  }
+
+  void a_busy_machine_gives_the_same_garment() {
+    // Issue 40: the budgets decide the garment, so they must not be counted in seconds. Every
+    // check asks to flatten (θ_in threshold 2), and the revisit budget is half the work of the
+    // session that revisits every batch: some batches revisit, the later ones skip. The same
+    // session on a "busy machine", an observer that holds the solver 200 ms at each report of
+    // progress (as a machine shared with other work would), must skip the same revisits and end
+    // with the same positions, bit for bit. With the budget counted in the session's seconds
+    // (before issue 40), the slowed session ran out of time at its first check instead.
+    SessionOptions options = small_options();
+    options.arrangement.theta_in_threshold = 2.0;
+    options.arrangement.revisit_work = 1e18;
+    Session unbounded(scene_, options);
+    unbounded.run();
+    options.arrangement.revisit_work = 0.5 * unbounded.report().work;
+    QVERIFY(options.arrangement.revisit_work > 0.0);
+
+    Session idle(scene_, options);
+    idle.run();
+    class BusyMachine : public SessionObserver {
+     public:
+      void progress(std::string_view, double) override {
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        ++calls;
+      }
+      int calls = 0;
+    } busy_machine;
+    Session busy(scene_, options);
+    while (!busy.done())
+      busy.step(&busy_machine);
+    QVERIFY(busy_machine.calls > 0);
+    qInfo("idle %.2f s, busy %.2f s (%d progress reports), work %.0f and %.0f",
+          idle.report().seconds, busy.report().seconds, busy_machine.calls, idle.report().work,
+          busy.report().work);
+    QVERIFY(busy.report().seconds >= 0.2 * busy_machine.calls);  // the holds are in its time
+
+    int skipped = 0, revisited = 0;
+    QCOMPARE(busy.report().batches.size(), idle.report().batches.size());
+    for (std::size_t b = 0; b < idle.report().batches.size(); ++b) {
+      const BatchRecord& a = idle.report().batches[b];
+      QCOMPARE(busy.report().batches[b].revisits, a.revisits);
+      QCOMPARE(busy.report().batches[b].out_of_budget, a.out_of_budget);
+      skipped += a.out_of_budget ? 1 : 0;
+      revisited += a.revisits.empty() ? 0 : 1;
+    }
+    QVERIFY(skipped > 0 && revisited > 0);  // the budget bites in the middle of the session
+    QCOMPARE(busy.report().work, idle.report().work);
+    QVERIFY(busy.positions() == idle.positions());
   }
 
   void growth_that_stretches_the_batch_worse_is_undone() {
