@@ -1,0 +1,157 @@
+// Outputs (issue 40): what garment-init writes, and when. The command cases run garment-init on
+// copies of real patterns and bodies (tests/data) and check the exit status, the message and that
+// the files it must not touch are byte for byte as they were; the replacement of several files
+// together is checked on AtomicFileSet itself.
+
+#include <QProcess>
+#include <QtTest>
+
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "support/test_paths.h"
+
+namespace fs = std::filesystem;
+using garment::test::test_data;
+
+namespace {
+
+// A small real pattern (a four-panel skirt) and a real body.
+const fs::path kPattern = test_data("patterns/skirts__skirt_4_panels.json");
+const fs::path kBody = test_data("bodies/f_smpl_average_A40.obj");
+
+std::string contents(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+// Every file under `folder` with its bytes: what a refused command must leave as it was.
+std::map<std::string, std::string> tree(const fs::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(folder))
+    files[fs::relative(entry.path(), folder).string()] =
+        entry.is_regular_file() ? contents(entry.path()) : std::string("<not a file>");
+  return files;
+}
+
+struct Result {
+  int exit_code;
+  std::string err;
+};
+
+// Runs garment-init in `folder` (relative paths are relative to it).
+Result garment_init(const QStringList& arguments, const fs::path& folder) {
+  QProcess process;
+  process.setWorkingDirectory(QString::fromStdString(folder.string()));
+  process.start(GARMENT_INIT_EXE, arguments);
+  if (!process.waitForFinished(600000)) {
+    process.kill();
+    process.waitForFinished();
+    return {-1, "timed out"};
+  }
+  const int code = process.exitStatus() == QProcess::NormalExit ? process.exitCode() : -1;
+  return {code, process.readAllStandardError().toStdString()};
+}
+
+}  // namespace
+
+class OutputsTest : public QObject {
+  Q_OBJECT
+
+  QTemporaryDir temporary;
+  fs::path root;
+  int cases = 0;
+
+  // A fresh folder holding p.json (the pattern) and b.obj (the body).
+  fs::path case_folder() {
+    const fs::path folder = root / ("case_" + std::to_string(cases++));
+    fs::create_directories(folder);
+    fs::copy_file(kPattern, folder / "p.json");
+    fs::copy_file(kBody, folder / "b.obj");
+    return folder;
+  }
+
+ private slots:
+  void initTestCase() {
+    QVERIFY(temporary.isValid());
+    root = temporary.path().toStdString();
+    QVERIFY(fs::exists(kPattern));
+    QVERIFY(fs::exists(kBody));
+  }
+
+  // Item 2: a real body with a second surface touching it at one vertex (a small tetrahedron
+  // standing on the top of the head) is refused when loaded, naming the file's line of the face,
+  // before any output is touched. It used to load, and `run` failed after writing its outputs,
+  // naming "triangle N" (the distance queries' mesh refused the face).
+  void refuses_a_non_manifold_vertex_before_any_output() {
+    const fs::path folder = case_folder();
+    const std::string body = contents(kBody);
+    std::istringstream lines(body);
+    int line_count = 0, vertex_count = 0, top = 0;
+    double top_height = -1e300;
+    Eigen::Vector3d apex = Eigen::Vector3d::Zero();
+    for (std::string line; std::getline(lines, line);) {
+      ++line_count;
+      if (line.rfind("v ", 0) != 0) continue;
+      ++vertex_count;
+      std::istringstream numbers(line.substr(2));
+      Eigen::Vector3d vertex;
+      numbers >> vertex.x() >> vertex.y() >> vertex.z();
+      if (vertex.y() > top_height) {
+        top_height = vertex.y();
+        top = vertex_count;
+        apex = vertex;
+      }
+    }
+    QVERIFY(body.back() == '\n');
+    QVERIFY(top > 0);
+    // Three new vertices 2 cm above the apex; the tetrahedron's four faces, outward.
+    std::ostringstream tetrahedron;
+    for (const Eigen::Vector3d& offset :
+         {Eigen::Vector3d(0.01, 0.02, 0.0), Eigen::Vector3d(-0.01, 0.02, 0.01),
+          Eigen::Vector3d(-0.01, 0.02, -0.01)}) {
+      const Eigen::Vector3d vertex = apex + offset;
+      tetrahedron << "v " << vertex.x() << " " << vertex.y() << " " << vertex.z() << "\n";
+    }
+    const int a = vertex_count + 1, b = vertex_count + 2, c = vertex_count + 3;
+    tetrahedron << "f " << top << " " << b << " " << a << "\n"
+                << "f " << top << " " << c << " " << b << "\n"
+                << "f " << top << " " << a << " " << c << "\n"
+                << "f " << a << " " << b << " " << c << "\n";
+    write(folder / "touching.obj", body + tetrahedron.str());
+    const std::string first_face_line = "line " + std::to_string(line_count + 4);
+
+    const Result inspected = garment_init({"body", "touching.obj", "--spacing", "0.02"}, folder);
+    QVERIFY2(inspected.exit_code == 1, inspected.err.c_str());
+    QVERIFY2(inspected.err.find("touching.obj: " + first_face_line + ":") != std::string::npos,
+             inspected.err.c_str());
+    QVERIFY2(inspected.err.find("manifold") != std::string::npos, inspected.err.c_str());
+
+    write(folder / "old.obj", "# an earlier garment\n");
+    write(folder / "old.glb", "an earlier glb\n");
+    write(folder / "old.json", "{\"an earlier\": \"report\"}\n");
+    const auto before = tree(folder);
+    const Result run = garment_init({"run", "p.json", "--body", "touching.obj", "-o", "old.obj",
+                                     "--glb", "old.glb", "--report", "old.json", "--quiet"},
+                                    folder);
+    QVERIFY2(run.exit_code == 1, run.err.c_str());
+    QVERIFY2(run.err.find("touching.obj: " + first_face_line + ":") != std::string::npos,
+             run.err.c_str());
+    QVERIFY2(tree(folder) == before, "the run changed its outputs");
+  }
+
+};
+
+QTEST_GUILESS_MAIN(OutputsTest)
+#include "test_outputs.moc"
