@@ -109,15 +109,21 @@ int run_command(const std::vector<std::string>& args) {
   }
   progress.finish();
 
-  write_garment_obj(*output, garment, session.positions());
-  if (const auto glb = line.value("--glb"))
-    write_glb(*glb, garment_glb_meshes(garment, session.positions(), scene->body.get()));
   const BodyReference reference(scene->body->mesh);
   const GarmentMetrics metrics = measure_garment(garment, session.positions(), &reference,
                                                  expected_regions_from_names(garment));
   const QualityVerdict verdict = judge_garment(garment, metrics);
+  // Every output is complete on disk before the first replaces its destination: a failure or a
+  // signal up to here leaves all of them as they were.
+  AtomicFileSet outputs;
+  outputs.stage(*output, format_garment_obj(garment, session.positions()));
+  if (const auto glb = line.value("--glb"))
+    outputs.stage(
+        *glb,
+        format_glb(garment_glb_meshes(garment, session.positions(), scene->body.get()), *glb));
   if (const auto report = line.value("--report"))
-    write_file_atomically(*report, session_report_json(session, metrics, verdict) + "\n");
+    outputs.stage(*report, session_report_json(session, metrics, verdict) + "\n");
+  outputs.commit();
 
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

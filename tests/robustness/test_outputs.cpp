@@ -6,14 +6,21 @@
 #include <QProcess>
 #include <QtTest>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <Eigen/Core>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
+#include <thread>
 
+#include "engine/core/atomic_file.h"
 #include "support/test_paths.h"
 
 namespace fs = std::filesystem;
@@ -149,6 +156,81 @@ class OutputsTest : public QObject {
     QVERIFY2(run.err.find("touching.obj: " + first_face_line + ":") != std::string::npos,
              run.err.c_str());
     QVERIFY2(tree(folder) == before, "the run changed its outputs");
+  }
+
+  // Item 2: outputs staged together replace nothing when one of them cannot be written.
+  void failed_stage_replaces_nothing() {
+    const fs::path folder = root / "staged";
+    fs::create_directories(folder);
+    write(folder / "a.obj", "old a\n");
+    write(folder / "b.glb", "old b\n");
+    const auto before = tree(folder);
+    {
+      garment::AtomicFileSet outputs;
+      outputs.stage(folder / "a.obj", "new a\n");
+      outputs.stage(folder / "b.glb", "new b\n");
+      QVERIFY_THROWS_EXCEPTION(std::runtime_error,
+                               outputs.stage(folder / "missing" / "c.json", "new c\n"));
+    }
+    QVERIFY(tree(folder) == before);  // and no temporary left
+  }
+
+  // Item 2: a run's outputs (OBJ, GLB, report) are replaced together. A child process replaces
+  // three files with generation g = 1, 2, ... in a loop until SIGTERM, sent at a random moment,
+  // ends it; the three must then hold one generation. On tmpfs (no fsync cost) the renames are a
+  // good share of each loop: with the renames one after the other, unguarded, 7, 10, 9 and 4 kills
+  // of 60 landed between two of them in four runs.
+  void outputs_are_replaced_together_despite_a_signal() {
+    const fs::path shared_memory = "/dev/shm";
+    const fs::path folder = (fs::is_directory(shared_memory) ? shared_memory : root) /
+                            ("garment-outputs-" + std::to_string(::getpid()));
+    fs::create_directories(folder);
+    const std::vector<fs::path> files = {folder / "out.obj", folder / "out.glb",
+                                         folder / "out.json"};
+    std::mt19937 random(40);
+    std::uniform_int_distribution<int> delay_us(0, 3000);
+    int split = 0, killed = 0;
+    const int trials = 60;
+    for (int trial = 0; trial < trials; ++trial) {
+      for (const fs::path& file : files)
+        write(file, "0");
+      int ready[2];
+      QCOMPARE(::pipe(ready), 0);
+      const pid_t child = ::fork();
+      if (child == 0) {
+        ::signal(SIGTERM, SIG_DFL);
+        ::close(ready[0]);
+        for (long generation = 1;; ++generation) {
+          garment::AtomicFileSet outputs;
+          for (const fs::path& file : files)
+            outputs.stage(file, std::to_string(generation));
+          outputs.commit();
+          if (generation == 1) {
+            const char byte = 1;
+            if (::write(ready[1], &byte, 1) != 1) ::_exit(1);
+          }
+        }
+      }
+      ::close(ready[1]);
+      char byte = 0;
+      QCOMPARE(::read(ready[0], &byte, 1), ssize_t(1));
+      ::close(ready[0]);
+      std::this_thread::sleep_for(std::chrono::microseconds(delay_us(random)));
+      ::kill(child, SIGTERM);
+      int status = 0;
+      QCOMPARE(::waitpid(child, &status, 0), child);
+      killed += WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM;
+      const std::string first = contents(files[0]);
+      for (const fs::path& file : files)
+        if (contents(file) != first) {
+          ++split;
+          break;
+        }
+    }
+    fs::remove_all(folder);
+    qInfo("%d kills of %d left the three files at different generations", split, trials);
+    QCOMPARE(killed, trials);
+    QCOMPARE(split, 0);
   }
 
 };
