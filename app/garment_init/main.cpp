@@ -161,8 +161,10 @@ void print_help(std::ostream& out) {
     }
     out << "\n";
   }
-  out << "Exit status: 0 success, 1 bad input (the message names file and place), 2 bad usage,\n"
-         "3 a garment was written but fails the quality check.\n";
+  out << "Exit status: 0 success, 1 bad input (the message names file and place), 2 bad usage\n"
+         "(also an output that is an input, two outputs on one file, or an output that cannot be\n"
+         "written: all checked before any work), 3 a garment was written but fails the quality\n"
+         "check.\n";
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <QtTest>
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <Eigen/Core>
@@ -95,6 +96,114 @@ class OutputsTest : public QObject {
     root = temporary.path().toStdString();
     QVERIFY(fs::exists(kPattern));
     QVERIFY(fs::exists(kBody));
+  }
+
+  // Item 1: an output that is an input, under any name, or two outputs on one file.
+  void refuses_an_output_that_is_an_input_data() {
+    QTest::addColumn<QStringList>("arguments");
+    QTest::addColumn<QString>("named");  // the message names this path
+    const QStringList run = {"run", "p.json", "--body", "b.obj", "--quiet"};
+    QTest::newRow("run -o BODY") << run + QStringList{"-o", "b.obj"} << "b.obj";
+    QTest::newRow("run --glb BODY")
+        << run + QStringList{"-o", "out.obj", "--glb", "b.obj"} << "b.obj";
+    QTest::newRow("run -o ./BODY") << run + QStringList{"-o", "./b.obj"} << "b.obj";
+    QTest::newRow("run -o symbolic link to BODY")
+        << run + QStringList{"-o", "symbolic.obj"} << "symbolic.obj";
+    QTest::newRow("run -o hard link of BODY") << run + QStringList{"-o", "hard.obj"} << "hard.obj";
+    QTest::newRow("run -o PATTERN") << run + QStringList{"-o", "p.json"} << "p.json";
+    QTest::newRow("run --report PARAMETERS")
+        << run + QStringList{"--parameters", "parameters.json", "-o",
+                             "out.obj",      "--report",        "parameters.json"}
+        << "parameters.json";
+    QTest::newRow("run -o X --report X")
+        << run + QStringList{"-o", "old.obj", "--report", "old.obj"} << "old.obj";
+    QTest::newRow("run -o X --glb sub/../X")
+        << run + QStringList{"-o", "old.obj", "--glb", "sub/../old.obj"} << "old.obj";
+    QTest::newRow("seed -o BODY") << QStringList{"seed", "p.json", "--body", "b.obj", "-o", "b.obj"}
+                                  << "b.obj";
+    QTest::newRow("flat -o PATTERN") << QStringList{"flat", "p.json", "-o", "p.json"} << "p.json";
+  }
+  void refuses_an_output_that_is_an_input() {
+    QFETCH(QStringList, arguments);
+    QFETCH(QString, named);
+    const fs::path folder = case_folder();
+    fs::create_symlink("b.obj", folder / "symbolic.obj");
+    fs::create_hard_link(folder / "b.obj", folder / "hard.obj");
+    fs::create_directory(folder / "sub");
+    write(folder / "parameters.json", "{}\n");
+    write(folder / "old.obj", "# an earlier garment\n");
+    const auto before = tree(folder);
+    const Result result = garment_init(arguments, folder);
+    QVERIFY2(result.exit_code == 2, result.err.c_str());
+    QVERIFY2(result.err.find(named.toStdString()) != std::string::npos, result.err.c_str());
+    QVERIFY2(tree(folder) == before, "the command changed its folder");
+  }
+
+  // Item 2: every output is checked before the work, and before any input is read: the pattern
+  // of the last rows is broken (bad input, exit 1), so exit 2 shows the output was checked first.
+  void refuses_an_output_it_cannot_write_data() {
+    QTest::addColumn<QStringList>("arguments");
+    QTest::addColumn<QString>("named");
+    QTest::addColumn<QString>("reason");
+    const QStringList run = {"run", "p.json", "--body", "b.obj", "--quiet"};
+    QTest::newRow("-o in a missing folder")
+        << run + QStringList{"-o", "/nonexistent/x.obj"} << "/nonexistent/x.obj"
+        << "does not exist";
+    QTest::newRow("--report in a missing folder")
+        << run + QStringList{"-o", "old.obj", "--report", "missing/r.json"} << "missing/r.json"
+        << "does not exist";
+    QTest::newRow("--glb in a missing folder")
+        << run + QStringList{"-o", "old.obj", "--glb", "missing/g.glb"} << "missing/g.glb"
+        << "does not exist";
+    QTest::newRow("-o empty") << run + QStringList{"-o", ""} << "-o"
+                              << "empty file name";
+    QTest::newRow("-o /proc/version") << run + QStringList{"-o", "/proc/version"} << "/proc/version"
+                                      << "proc file system";
+    QTest::newRow("-o a folder") << run + QStringList{"-o", "sub"} << "sub"
+                                 << "a folder";
+    QTest::newRow("-o a named pipe") << run + QStringList{"-o", "pipe"} << "pipe"
+                                     << "a named pipe";
+    QTest::newRow("-o under a file") << run + QStringList{"-o", "old.obj/x.obj"} << "old.obj/x.obj"
+                                     << "not a folder";
+    QTest::newRow("--snapshots under a file")
+        << run + QStringList{"-o", "x.obj", "--snapshots", "old.obj/snapshots"}
+        << "old.obj/snapshots"
+        << "not a folder";
+    QTest::newRow("seed -o in a missing folder")
+        << QStringList{"seed", "p.json", "--body", "b.obj", "-o", "missing/s.obj"}
+        << "missing/s.obj"
+        << "does not exist";
+    QTest::newRow("flat -o in a missing folder")
+        << QStringList{"flat", "p.json", "-o", "missing/f.obj"} << "missing/f.obj"
+        << "does not exist";
+    QTest::newRow("train-classifier -o inside DATA_DIR")
+        << QStringList{"train-classifier", "sub", "-o", "sub/weights.json"} << "sub/weights.json"
+        << "input folder";
+    QTest::newRow("run, broken pattern, -o in a missing folder")
+        << QStringList{"run", "broken.json", "--body", "b.obj", "-o", "missing/x.obj"}
+        << "missing/x.obj"
+        << "does not exist";
+    QTest::newRow("run, broken pattern, -o the body")
+        << QStringList{"run", "broken.json", "--body", "b.obj", "-o", "b.obj"} << "b.obj"
+        << "never overwritten";
+  }
+  void refuses_an_output_it_cannot_write() {
+    QFETCH(QStringList, arguments);
+    QFETCH(QString, named);
+    QFETCH(QString, reason);
+    const fs::path folder = case_folder();
+    fs::create_directory(folder / "sub");
+    fs::copy_file(kPattern, folder / "sub" / "p.json");
+    QCOMPARE(::mkfifo((folder / "pipe").c_str(), 0644), 0);
+    write(folder / "old.obj", "# an earlier garment\n");
+    fs::copy_file(test_data("patterns/bad/truncated.json"), folder / "broken.json");
+    const auto before = tree(folder);
+    const Result result = garment_init(arguments, folder);
+    QVERIFY2(result.exit_code == 2, result.err.c_str());
+    QVERIFY2(result.err.find(named.toStdString()) != std::string::npos, result.err.c_str());
+    QVERIFY2(result.err.find(reason.toStdString()) != std::string::npos, result.err.c_str());
+    QVERIFY2(result.err.find("No such file or directory") == std::string::npos, result.err.c_str());
+    QVERIFY2(tree(folder) == before, "the command changed its folder");
   }
 
   // Item 2: a real body with a second surface touching it at one vertex (a small tetrahedron
