@@ -59,8 +59,8 @@ const Command kCommands[] = {
      "OUTDIR/NAME.obj,\n"
      ".report.json, .log and .outcome.json; patterns with an outcome are skipped, so an "
      "interrupted\n"
-     "batch resumes. Prints a progress bar on a terminal and writes summary.md and summary.json: "
-     "success\n"
+     "batch resumes. OUTDIR may not be DIR or lie inside it; jobs die with the batch. Prints a\n"
+     "progress bar on a terminal and writes summary.md and summary.json: success\n"
      "rate, failures by class, time per garment (median, p95, max).",
      garment::cli::batch_command},
     {"body", "body [BODY.obj] [--json] [--spacing M] [--no-cache]",

@@ -7,6 +7,7 @@
 #include <QtTest>
 
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -70,6 +72,32 @@ Result garment_init(const QStringList& arguments, const fs::path& folder) {
   }
   const int code = process.exitStatus() == QProcess::NormalExit ? process.exitCode() : -1;
   return {code, process.readAllStandardError().toStdString()};
+}
+
+// The parent of process `pid` and whether it is still running (not a zombie), from /proc.
+std::optional<std::pair<pid_t, bool>> process_parent(pid_t pid) {
+  const std::string stat = contents("/proc/" + std::to_string(pid) + "/stat");
+  const std::size_t name_end = stat.rfind(')');
+  if (stat.empty() || name_end == std::string::npos) return std::nullopt;
+  std::istringstream fields(stat.substr(name_end + 1));
+  char state = 0;
+  pid_t parent = 0;
+  fields >> state >> parent;
+  return std::pair{parent, state != 'Z'};
+}
+
+// A running child of `parent` that has become `garment-init run` (past its execv), or 0.
+pid_t running_job_of(pid_t parent) {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const pid_t pid = std::stoi(name);
+    const auto found = process_parent(pid);
+    if (!found || found->first != parent || !found->second) continue;
+    const std::string command_line = contents(entry.path() / "cmdline");
+    if (command_line.find(std::string("\0run\0", 5)) != std::string::npos) return pid;
+  }
+  return 0;
 }
 
 }  // namespace
@@ -342,6 +370,73 @@ class OutputsTest : public QObject {
     QCOMPARE(split, 0);
   }
 
+  // Item 7: a batch's outputs never go into its pattern folder (the reports, .json, were read back
+  // as patterns: "7 patterns: 2 ok, error 5").
+  void batch_refuses_its_pattern_folder_data() {
+    QTest::addColumn<QString>("output");
+    QTest::newRow("-o DIR") << "patterns";
+    QTest::newRow("-o DIR/") << "patterns/";
+    QTest::newRow("-o DIR/out") << "patterns/out";
+  }
+  void batch_refuses_its_pattern_folder() {
+    QFETCH(QString, output);
+    const fs::path folder = root / ("batch_" + std::to_string(cases++));
+    fs::create_directories(folder / "patterns");
+    fs::copy_file(kPattern, folder / "patterns" / kPattern.filename());
+    const auto before = tree(folder);
+    const Result result = garment_init({"batch", "patterns", "-o", output, "--jobs", "1", "--body",
+                                        QString::fromStdString(kBody.string())},
+                                       folder);
+    QVERIFY2(result.exit_code == 2, result.err.c_str());
+    QVERIFY2(result.err.find("input folder") != std::string::npos, result.err.c_str());
+    QVERIFY2(tree(folder) == before, "the batch changed its folders");
+  }
+
+  // Item 7: the job a batch runs dies with the batch, however the batch ends; an orphan went on
+  // writing its outputs while a resumed batch ran the same job again. This test adopts orphans
+  // (child subreaper), so that it can see and reap the job once its parent is gone.
+  void batch_job_dies_with_the_batch_data() {
+    QTest::addColumn<int>("signal");
+    QTest::newRow("SIGKILL") << int(SIGKILL);
+    QTest::newRow("SIGTERM") << int(SIGTERM);
+  }
+  void batch_job_dies_with_the_batch() {
+    QFETCH(int, signal);
+    const fs::path folder = root / ("batch_" + std::to_string(cases++));
+    fs::create_directories(folder / "patterns");
+    fs::copy_file(kPattern, folder / "patterns" / kPattern.filename());
+    QCOMPARE(::prctl(PR_SET_CHILD_SUBREAPER, 1), 0);
+    const std::string exe = GARMENT_INIT_EXE, patterns = (folder / "patterns").string(),
+                      output = (folder / "out").string(), body = kBody.string();
+    const pid_t batch = ::fork();
+    if (batch == 0) {
+      ::execl(exe.c_str(), exe.c_str(), "batch", patterns.c_str(), "-o", output.c_str(), "--jobs",
+              "1", "--body", body.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    pid_t job = 0;
+    for (int wait = 0; wait < 1000 && !job; ++wait) {
+      job = running_job_of(batch);
+      if (!job) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ::kill(batch, signal);
+    int status = 0;
+    QCOMPARE(::waitpid(batch, &status, 0), batch);
+    QVERIFY2(job != 0, "the batch started no job within 10 s");
+    // The orphaned job is now this process's child: reaped here once it ends.
+    bool ended = false;
+    for (int wait = 0; wait < 300 && !ended; ++wait) {
+      ended = ::waitpid(job, &status, WNOHANG) == job;
+      if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    if (!ended) {
+      ::kill(job, SIGKILL);
+      ::waitpid(job, &status, 0);
+    }
+    QCOMPARE(::prctl(PR_SET_CHILD_SUBREAPER, 0), 0);
+    QVERIFY2(ended, "the job outlived its batch by 3 s");
+    QVERIFY(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  }
 };
 
 QTEST_GUILESS_MAIN(OutputsTest)
