@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
@@ -21,9 +22,11 @@
 #include "command_line.h"
 #include "commands.h"
 #include "engine/body/default_body.h"
+#include "engine/body/location_overrides.h"
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
 #include "engine/pattern/pattern_files.h"
+#include "output_plan.h"
 
 namespace garment::cli {
 namespace {
@@ -84,30 +87,57 @@ Outcome read_outcome(const Job& job, const std::filesystem::path& report, int ex
   return outcome;
 }
 
+// The files one job writes into the output folder.
+struct JobFiles {
+  std::filesystem::path obj, report, log, outcome;
+};
+
+JobFiles job_files(const Job& job, const std::filesystem::path& output) {
+  return {output / (job.name + ".obj"), output / (job.name + ".report.json"),
+          output / (job.name + ".log"), output / (job.name + ".outcome.json")};
+}
+
 // Runs one job in a child process; returns its outcome (also written next to the output).
 Outcome run_job(const Job& job, const std::filesystem::path& output, double time_limit,
                 const std::string& parameters) {
-  const std::filesystem::path obj = output / (job.name + ".obj");
-  const std::filesystem::path report = output / (job.name + ".report.json");
-  const std::filesystem::path log = output / (job.name + ".log");
+  const JobFiles files = job_files(job, output);
+  const std::filesystem::path& report = files.report;
+  const std::filesystem::path& log = files.log;
+  // Built before the fork: the child of a threaded process may only make async-signal-safe calls
+  // until execv (another thread may hold the allocator's lock at the fork).
+  const std::string exe = self_executable().string();
+  std::vector<std::string> words = {exe,
+                                    "run",
+                                    job.pattern.string(),
+                                    "--body",
+                                    job.body.string(),
+                                    "-o",
+                                    files.obj.string(),
+                                    "--report",
+                                    report.string(),
+                                    "--threads",
+                                    "1",
+                                    "--quiet"};
+  if (!parameters.empty()) words.insert(words.end(), {"--parameters", parameters});
+  std::vector<char*> argv;
+  for (std::string& word : words)
+    argv.push_back(word.data());
+  argv.push_back(nullptr);
+  const pid_t parent = ::getpid();
   const auto start = std::chrono::steady_clock::now();
   const pid_t child = ::fork();
   if (child == 0) {
+    // The job dies with the batch (SIGTERM, SIGKILL, a crash): an orphan would keep writing its
+    // files while a resumed batch runs the same job again. The signal is tied to this worker
+    // thread, which waits for the job to end. A parent gone before prctl took effect is seen in
+    // getppid(): the child was handed to another process.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(127);
     const int descriptor = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (descriptor >= 0) {
       ::dup2(descriptor, STDOUT_FILENO);
       ::dup2(descriptor, STDERR_FILENO);
     }
-    const std::string exe = self_executable().string();
-    std::vector<std::string> words = {
-        exe,  "run",        job.pattern.string(), "--body",        job.body.string(),
-        "-o", obj.string(), "--report",           report.string(), "--threads",
-        "1",  "--quiet"};
-    if (!parameters.empty()) words.insert(words.end(), {"--parameters", parameters});
-    std::vector<char*> argv;
-    for (std::string& word : words)
-      argv.push_back(word.data());
-    argv.push_back(nullptr);
     ::execv(exe.c_str(), argv.data());
     ::_exit(127);
   }
@@ -149,7 +179,7 @@ Outcome run_job(const Job& job, const std::filesystem::path& output, double time
                         {"status", outcome.status},
                         {"seconds", outcome.seconds},
                         {"message", outcome.message}};
-  write_file_atomically(output / (job.name + ".outcome.json"), record.dump() + "\n");
+  write_file_atomically(files.outcome, record.dump() + "\n");
   return outcome;
 }
 
@@ -289,6 +319,22 @@ int batch_command(const std::vector<std::string>& args) {
     if (limit > 0 && static_cast<int>(all.size()) >= limit) break;
   }
   if (all.empty()) throw InputError(folder.string() + ": no pattern files");
+  // The output folder may not be the pattern folder or inside it: its reports are .json files,
+  // read back as patterns by the next run of the batch.
+  OutputPlan plan;
+  plan.input_folder("DIR", folder);
+  if (!parameters.empty()) plan.input("--parameters", parameters);
+  plan.output_folder("-o", output);
+  for (const Job& job : all) {
+    plan.input(job.name + "'s body", job.body);
+    plan.input(job.name + "'s body locations", location_overrides_path(job.body));
+    const JobFiles files = job_files(job, output);
+    for (const std::filesystem::path& file : {files.obj, files.report, files.log, files.outcome})
+      plan.output("-o", file);
+  }
+  plan.output("-o", output / "summary.md");
+  plan.output("-o", output / "summary.json");
+  plan.check();
   std::filesystem::create_directories(output);
 
   const auto start = std::chrono::steady_clock::now();

@@ -5,6 +5,7 @@
 #include "engine/io/garment_obj.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/quality/flat_placement.h"
+#include "output_plan.h"
 
 namespace garment::cli {
 
@@ -16,8 +17,12 @@ int flat_command(const std::vector<std::string>& args) {
   options.target_edge_length = line.number("--edge-length", options.target_edge_length);
   if (!(options.target_edge_length > 0.0))
     throw UsageError("--edge-length must be positive (metres)");
-  const Garment garment =
-      build_garment(load_pattern(line.only_positional("pattern file")), options);
+  const std::string pattern_path = line.only_positional("pattern file");
+  OutputPlan files;
+  files.input("the pattern", pattern_path);
+  files.output("-o", *output);
+  files.check();
+  const Garment garment = build_garment(load_pattern(pattern_path), options);
   const Eigen::MatrixX3d positions = flat_placement(garment);
   write_garment_obj(*output, garment, positions);
   const Eigen::RowVector3d lower = positions.colwise().minCoeff();

@@ -59,8 +59,8 @@ const Command kCommands[] = {
      "OUTDIR/NAME.obj,\n"
      ".report.json, .log and .outcome.json; patterns with an outcome are skipped, so an "
      "interrupted\n"
-     "batch resumes. Prints a progress bar on a terminal and writes summary.md and summary.json: "
-     "success\n"
+     "batch resumes. OUTDIR may not be DIR or lie inside it; jobs die with the batch. Prints a\n"
+     "progress bar on a terminal and writes summary.md and summary.json: success\n"
      "rate, failures by class, time per garment (median, p95, max).",
      garment::cli::batch_command},
     {"body", "body [BODY.obj] [--json] [--spacing M] [--no-cache]",
@@ -161,8 +161,10 @@ void print_help(std::ostream& out) {
     }
     out << "\n";
   }
-  out << "Exit status: 0 success, 1 bad input (the message names file and place), 2 bad usage,\n"
-         "3 a garment was written but fails the quality check.\n";
+  out << "Exit status: 0 success, 1 bad input (the message names file and place), 2 bad usage\n"
+         "(also an output that is an input, two outputs on one file, or an output that cannot be\n"
+         "written: all checked before any work), 3 a garment was written but fails the quality\n"
+         "check.\n";
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "engine/arrange/session.h"
 #include "engine/body/default_body.h"
+#include "engine/body/location_overrides.h"
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
 #include "engine/io/garment_obj.h"
@@ -19,6 +20,8 @@
 #include "engine/io/session_report.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
+#include "engine/seeding/piece_classifier.h"
+#include "output_plan.h"
 
 namespace garment::cli {
 namespace {
@@ -71,20 +74,34 @@ int run_command(const std::vector<std::string>& args) {
         tbb::global_control::max_allowed_parallelism, threads);
   if (line.has("--seed-pieces") != line.has("--seed-location"))
     throw UsageError("--seed-pieces and --seed-location go together");
-
-  const auto start = std::chrono::steady_clock::now();
   SceneOptions scene_options;
   scene_options.meshing.target_edge_length =
       line.number("--edge-length", scene_options.meshing.target_edge_length);
   if (!(scene_options.meshing.target_edge_length > 0.0))
     throw UsageError("--edge-length must be positive (metres)");
   const std::filesystem::path body_path = line.value("--body").value_or(default_body_path());
+  const auto glb = line.value("--glb");
+  const auto report = line.value("--report");
+  const auto snapshots = line.value("--snapshots");
+  const auto parameters = line.value("--parameters");
+
+  OutputPlan plan;
+  plan.input("the pattern", pattern_path);
+  plan.input("the body", body_path);
+  plan.input("the body's locations", location_overrides_path(body_path));
+  plan.input("the classifier weights", default_classifier_weights_path());
+  if (parameters) plan.input("--parameters", *parameters);
+  plan.output("-o", *output);
+  if (glb) plan.output("--glb", *glb);
+  if (report) plan.output("--report", *report);
+  if (snapshots) plan.output_folder("--snapshots", *snapshots);
+  plan.check();
+
+  const auto start = std::chrono::steady_clock::now();
+  SessionOptions options;
+  if (parameters) options.arrangement = load_parameters(*parameters);
   const std::shared_ptr<const Scene> scene = load_scene(pattern_path, body_path, scene_options);
   const Garment& garment = *scene->garment;
-
-  SessionOptions options;
-  if (const auto parameters = line.value("--parameters"))
-    options.arrangement = load_parameters(*parameters);
   if (line.has("--seed-pieces")) {
     std::vector<std::string> names(kBodyLocationNames.begin(), kBodyLocationNames.end());
     options.seed =
@@ -94,7 +111,6 @@ int run_command(const std::vector<std::string>& args) {
 
   Session session(scene, options);
   TerminalProgress progress(!line.has("--quiet") && ::isatty(STDERR_FILENO));
-  const auto snapshots = line.value("--snapshots");
   if (snapshots) std::filesystem::create_directories(*snapshots);
   for (int index = 0; !session.done(); ++index) {
     const Phase ran = session.step(&progress);
@@ -109,15 +125,20 @@ int run_command(const std::vector<std::string>& args) {
   }
   progress.finish();
 
-  write_garment_obj(*output, garment, session.positions());
-  if (const auto glb = line.value("--glb"))
-    write_glb(*glb, garment_glb_meshes(garment, session.positions(), scene->body.get()));
   const BodyReference reference(scene->body->mesh);
   const GarmentMetrics metrics = measure_garment(garment, session.positions(), &reference,
                                                  expected_regions_from_names(garment));
   const QualityVerdict verdict = judge_garment(garment, metrics);
-  if (const auto report = line.value("--report"))
-    write_file_atomically(*report, session_report_json(session, metrics, verdict) + "\n");
+  // Every output is complete on disk before the first replaces its destination: a failure or a
+  // signal up to here leaves all of them as they were.
+  AtomicFileSet outputs;
+  outputs.stage(*output, format_garment_obj(garment, session.positions()));
+  if (glb)
+    outputs.stage(
+        *glb,
+        format_glb(garment_glb_meshes(garment, session.positions(), scene->body.get()), *glb));
+  if (report) outputs.stage(*report, session_report_json(session, metrics, verdict) + "\n");
+  outputs.commit();
 
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

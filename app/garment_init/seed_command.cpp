@@ -8,12 +8,14 @@
 #include "engine/arrange/arrangement_parameters.h"
 #include "engine/arrange/scene.h"
 #include "engine/body/default_body.h"
+#include "engine/body/location_overrides.h"
 #include "engine/io/garment_obj.h"
 #include "engine/io/parameters_json.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/seeding/piece_classifier.h"
 #include "engine/seeding/seed_choice.h"
 #include "engine/seeding/seed_shape.h"
+#include "output_plan.h"
 
 namespace garment::cli {
 namespace {
@@ -112,6 +114,16 @@ int seed_command(const std::vector<std::string>& args) {
     throw UsageError("--edge-length must be positive (metres)");
   scene_options.classifier_weights =
       line.value("--weights").value_or(default_classifier_weights_path().string());
+  const std::string body_path = line.value("--body").value_or(default_body_path().string());
+  const auto output = line.value("-o");
+  OutputPlan files;
+  files.input("the pattern", pattern_path);
+  files.input("the classifier weights", scene_options.classifier_weights);
+  files.input("the body", body_path);
+  files.input("the body's locations", location_overrides_path(body_path));
+  if (const auto parameters = line.value("--parameters")) files.input("--parameters", *parameters);
+  if (output) files.output("-o", *output);
+  files.check();
   const PieceClassifier classifier = PieceClassifier::load(scene_options.classifier_weights);
   const auto garment = std::make_shared<const Garment>(
       build_garment(load_pattern(pattern_path), scene_options.meshing));
@@ -119,12 +131,10 @@ int seed_command(const std::vector<std::string>& args) {
 
   // The body is loaded when given (so that a bad one is reported) or needed: for the shape, or
   // for the automatic seed, which measures the garment against it (a hem band is no waistband).
-  const auto output = line.value("-o");
   const bool manual = line.has("--seed-pieces");
   std::shared_ptr<const Body> body;
   if (output || line.has("--body") || !manual)
-    body = std::make_shared<const Body>(
-        load_body(line.value("--body").value_or(default_body_path().string())));
+    body = std::make_shared<const Body>(load_body(body_path));
 
   SeedPlan plan;
   if (manual) {

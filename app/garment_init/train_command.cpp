@@ -10,6 +10,7 @@
 #include "engine/seeding/classifier_training.h"
 #include "engine/seeding/classifier_weights.h"
 #include "engine/seeding/piece_classifier.h"
+#include "output_plan.h"
 
 namespace garment::cli {
 namespace {
@@ -28,13 +29,11 @@ std::vector<std::filesystem::path> dataset_files(const std::string& folder) {
   return files;
 }
 
-PanelLabeller labeller_for(const CommandLine& line, const std::string& folder) {
-  const std::filesystem::path regions =
-      line.value("--regions")
-          .value_or((std::filesystem::path(folder).lexically_normal().parent_path() /
-                     "panel_regions.json")
-                        .string());
-  return PanelLabeller::load(regions);
+std::filesystem::path regions_path(const CommandLine& line, const std::string& folder) {
+  return line.value("--regions")
+      .value_or(
+          (std::filesystem::path(folder).lexically_normal().parent_path() / "panel_regions.json")
+              .string());
 }
 
 std::vector<std::filesystem::path> split_files(const std::vector<std::filesystem::path>& files,
@@ -61,8 +60,14 @@ int train_classifier_command(const std::vector<std::string>& args) {
   if (options.ensemble < 1) throw UsageError("--ensemble must be at least 1");
   options.seed = static_cast<std::uint64_t>(line.integer("--seed", static_cast<int>(options.seed)));
 
+  // The folder is read as a whole: weights written into it would be read as a pattern next time.
+  OutputPlan plan;
+  plan.input_folder("DATA_DIR", folder);
+  plan.input("--regions", regions_path(line, folder));
+  plan.output("-o", *output);
+  plan.check();
   const std::vector<std::filesystem::path> files = dataset_files(folder);
-  const PanelLabeller labeller = labeller_for(line, folder);
+  const PanelLabeller labeller = PanelLabeller::load(regions_path(line, folder));
   const Clock::time_point start = Clock::now();
   const std::vector<std::filesystem::path> training_files = split_files(files, "training");
   const std::vector<LabelledPattern> training =
@@ -130,7 +135,7 @@ int classify_eval_command(const std::vector<std::string>& args) {
   const std::string folder = line.only_positional("data folder");
   const std::string split = line.value("--split").value_or("held-out");
   const std::vector<std::filesystem::path> files = split_files(dataset_files(folder), split);
-  const PanelLabeller labeller = labeller_for(line, folder);
+  const PanelLabeller labeller = PanelLabeller::load(regions_path(line, folder));
   const PieceClassifier classifier = PieceClassifier::load(
       line.value("--weights").value_or(default_classifier_weights_path().string()));
   const ClassificationReport report =

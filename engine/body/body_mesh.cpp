@@ -5,6 +5,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string_view>
 #include <tuple>
@@ -195,6 +196,57 @@ double signed_volume(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& t
   return volume;
 }
 
+// Every edge joining two faces still allows two surfaces touching at one vertex (two cones tip to
+// tip): the faces round that vertex then form several fans instead of one. The distance queries'
+// half-edge mesh cannot hold such a vertex, and found it only after a run had written its garment.
+// `neighbour[t][k]` is the triangle across edge k of t (from its corner k to corner k + 1).
+void check_vertex_fans(const BodyMesh& mesh,
+                       const std::vector<std::array<std::pair<int, bool>, 3>>& neighbour,
+                       const std::function<std::string(int)>& place) {
+  const int triangle_count = static_cast<int>(mesh.triangles.rows());
+  const int vertex_count = static_cast<int>(mesh.vertices.rows());
+  std::vector<int> first(vertex_count + 1, 0);  // the faces of vertex v: faces[first[v], first[v+1])
+  for (int t = 0; t < triangle_count; ++t)
+    for (int k = 0; k < 3; ++k)
+      ++first[mesh.triangles(t, k) + 1];
+  for (int v = 0; v < vertex_count; ++v)
+    first[v + 1] += first[v];
+  std::vector<int> faces(first.back());
+  std::vector<int> filled(first.begin(), first.end() - 1);
+  for (int t = 0; t < triangle_count; ++t)
+    for (int k = 0; k < 3; ++k)
+      faces[filled[mesh.triangles(t, k)]++] = t;
+  std::vector<int> reached_from(triangle_count, -1);  // the vertex whose fan reached the face
+  std::vector<int> stack;
+  for (int v = 0; v < vertex_count; ++v) {
+    if (first[v] == first[v + 1]) continue;
+    const int start = faces[first[v]];
+    reached_from[start] = v;
+    stack.assign(1, start);
+    int reached = 1;
+    while (!stack.empty()) {
+      const int t = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        if (mesh.triangles(t, k) != v && mesh.triangles(t, (k + 1) % 3) != v) continue;
+        const int other = neighbour[t][k].first;
+        if (reached_from[other] == v) continue;
+        reached_from[other] = v;
+        ++reached;
+        stack.push_back(other);
+      }
+    }
+    if (reached == first[v + 1] - first[v]) continue;
+    const int* apart = std::find_if(faces.data() + first[v], faces.data() + first[v + 1],
+                                    [&](int t) { return reached_from[t] != v; });
+    throw_input_error(mesh.source, place(*apart),
+                      "vertex " + std::to_string(v + 1) +
+                          " joins faces that no edge connects round it (this face and " +
+                          place(start) +
+                          "): two surfaces touch at this vertex; the surface is not a manifold");
+  }
+}
+
 // Checks that every edge has exactly two faces, flips triangles so that neighbours agree, and
 // turns each connected component outward. `lines` (may be empty) gives each triangle's line.
 void check_closed_and_orient(BodyMesh& mesh, const std::vector<int>& lines) {
@@ -258,6 +310,7 @@ void check_closed_and_orient(BodyMesh& mesh, const std::vector<int>& lines) {
                           std::to_string(edge.low + 1) + " and " + std::to_string(edge.high + 1) +
                           " of this face; a body must be closed for its inside to be defined");
   }
+  check_vertex_fans(mesh, neighbour, place);
 
   // Breadth-first over each component: a neighbour running a shared edge the same way is flipped.
   const double size = (mesh.upper_corner() - mesh.lower_corner()).norm();

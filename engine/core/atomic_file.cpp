@@ -3,10 +3,14 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <array>
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -43,6 +47,42 @@ void refuse_protected(const std::filesystem::path& path) {
                      ", which is never overwritten; choose another name");
 }
 
+// The signals a commit of several files holds back: the catchable ones that end a process.
+constexpr std::array<int, 4> kDeferredSignals = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+std::atomic<int> deferred_signal{0};
+std::mutex commit_mutex;
+
+void defer_signal(int signal) {
+  int none = 0;
+  deferred_signal.compare_exchange_strong(none, signal);
+}
+
+// For its lifetime, catches kDeferredSignals process-wide (blocking them in one thread would not
+// do: the kernel delivers a process's signal to any thread that does not block it, and the
+// arrangement's worker threads do not); afterwards restores the previous dispositions and raises
+// the first signal caught, which then acts as it would have.
+class SignalDeferral {
+ public:
+  SignalDeferral() {
+    struct sigaction action {};
+    action.sa_handler = defer_signal;
+    action.sa_flags = SA_RESTART;
+    sigfillset(&action.sa_mask);
+    for (std::size_t i = 0; i < kDeferredSignals.size(); ++i)
+      ::sigaction(kDeferredSignals[i], &action, &previous_[i]);
+  }
+  SignalDeferral(const SignalDeferral&) = delete;
+  SignalDeferral& operator=(const SignalDeferral&) = delete;
+  ~SignalDeferral() {
+    for (std::size_t i = 0; i < kDeferredSignals.size(); ++i)
+      ::sigaction(kDeferredSignals[i], &previous_[i], nullptr);
+    if (const int signal = deferred_signal.exchange(0)) ::raise(signal);
+  }
+
+ private:
+  std::array<struct sigaction, kDeferredSignals.size()> previous_{};
+};
+
 }  // namespace
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
@@ -52,6 +92,24 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& write) {
+  AtomicFileSet file;
+  file.stage(path, write);
+  file.commit();
+}
+
+AtomicFileSet::~AtomicFileSet() {
+  for (const auto& file : staged_) {
+    std::error_code ignored;
+    std::filesystem::remove(file.second, ignored);
+  }
+}
+
+void AtomicFileSet::stage(const std::filesystem::path& path, std::string_view contents) {
+  stage(path, [&](std::ostream& out) { out.write(contents.data(), contents.size()); });
+}
+
+void AtomicFileSet::stage(const std::filesystem::path& path,
+                          const std::function<void(std::ostream&)>& write) {
   if (path.empty()) fail(path, "empty file name");
   if (std::filesystem::is_directory(path)) fail(path, "it is a directory");
   refuse_protected(path);
@@ -70,14 +128,33 @@ void write_file_atomically(const std::filesystem::path& path,
       ::fsync(descriptor);
       ::close(descriptor);
     }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) fail(path, error.message());
+    staged_.emplace_back(path, temporary);
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
     throw;
   }
+}
+
+void AtomicFileSet::commit() {
+  // One rename is atomic by itself; between several, a signal would split the set. Commits are
+  // serialised because each deferral saves and restores the process's dispositions.
+  std::unique_lock lock(commit_mutex, std::defer_lock);
+  std::optional<SignalDeferral> deferral;
+  if (staged_.size() > 1) {
+    lock.lock();
+    deferral.emplace();
+  }
+  for (std::size_t i = 0; i < staged_.size(); ++i) {
+    std::error_code error;
+    std::filesystem::rename(staged_[i].second, staged_[i].first, error);
+    if (error) {
+      const std::filesystem::path failed = staged_[i].first;
+      staged_.erase(staged_.begin(), staged_.begin() + static_cast<std::ptrdiff_t>(i));
+      fail(failed, error.message());
+    }
+  }
+  staged_.clear();
 }
 
 void protect_input_file(const std::filesystem::path& path) {
