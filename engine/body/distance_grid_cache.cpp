@@ -8,35 +8,16 @@
 #include <string_view>
 
 #include "engine/core/atomic_file.h"
+#include "engine/core/hash64.h"
 #include "engine/core/mapped_file.h"
 
 namespace garment {
 namespace {
 
 // Bump when the algorithm or the layout changes: old files then simply stop matching.
-constexpr std::uint64_t kFormatVersion = 2;
+// 3: the checksum covers the header, and is XXH64.
+constexpr std::uint64_t kFormatVersion = 3;
 constexpr std::array<char, 8> kMagic = {'G', 'S', 'S', 'D', 'F', 'B', 'I', 'N'};
-
-// 64-bit multiply-xor hash over 8-byte words (the tail zero-padded), with a final avalanche.
-std::uint64_t hash_bytes(const void* data, std::size_t size, std::uint64_t seed) {
-  constexpr std::uint64_t kMultiplier = 0x9E3779B97F4A7C15ull;
-  std::uint64_t hash = seed ^ (size * kMultiplier);
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  std::size_t offset = 0;
-  for (; offset + 8 <= size; offset += 8) {
-    std::uint64_t word;
-    std::memcpy(&word, bytes + offset, 8);
-    hash = (hash ^ word) * kMultiplier;
-    hash ^= hash >> 29;
-  }
-  std::uint64_t tail = 0;
-  std::memcpy(&tail, bytes + offset, size - offset);
-  hash = (hash ^ tail) * kMultiplier;
-  hash ^= hash >> 32;
-  hash *= 0xD6E8FEB86659FD93ull;
-  hash ^= hash >> 32;
-  return hash;
-}
 
 struct Header {
   std::array<char, 8> magic;
@@ -50,19 +31,20 @@ struct Header {
   std::int32_t cells[3];  // the triangle lists (see CellTriangleLists)
   std::int32_t blocks[3];
   std::uint64_t block_count, start_count, entry_count, outside_count;
-  std::uint64_t checksum;  // of the samples and the lists
+  // XXH64 of the whole file with this field zero.
+  std::uint64_t checksum;
 };
-// The arrays follow the header back to back; none has elements aligned to more than 4 bytes.
-static_assert(sizeof(Header) % 4 == 0 && alignof(CellTriangleLists::Entry) <= 4);
+// No padding the compiler could fill with anything: every byte of the header is a field's, and
+// the checksum covers them all. The arrays follow back to back; none has elements aligned to more
+// than 4 bytes.
+static_assert(sizeof(Header) == 144 && alignof(CellTriangleLists::Entry) <= 4);
 
-std::uint64_t checksum_of(const DistanceGrid& grid, const CellTriangleLists& lists,
-                          std::uint64_t key) {
-  std::uint64_t hash = hash_bytes(grid.values.data(), grid.values.size() * sizeof(float), key);
-  hash = hash_bytes(lists.block_of.data(), lists.block_of.size() * sizeof(std::int32_t), hash);
-  hash = hash_bytes(lists.starts.data(), lists.starts.size() * sizeof(std::uint32_t), hash);
-  hash = hash_bytes(lists.entries.data(), lists.entries.size() * sizeof(CellTriangleLists::Entry),
-                    hash);
-  return hash_bytes(lists.triangle_outside.data(), lists.triangle_outside.size(), hash);
+// Starts the checksum with the header, its checksum field zero.
+Hash64 checksum_of_header(Header header) {
+  header.checksum = 0;
+  Hash64 hash;
+  hash.update(&header, sizeof header);
+  return hash;
 }
 
 // `count` elements of the mapping from `offset` on, advancing it.
@@ -80,14 +62,21 @@ void write_array(std::ostream& out, const SharedArray<T>& array) {
             static_cast<std::streamsize>(array.size() * sizeof(T)));
 }
 
+template <typename T>
+void hash_array(Hash64& hash, const SharedArray<T>& array) {
+  hash.update(array.data(), array.size() * sizeof(T));
+}
+
 }  // namespace
 
 std::uint64_t distance_grid_cache_key(const BodyMesh& body, double spacing, double margin) {
-  std::uint64_t key = hash_bytes(&kFormatVersion, sizeof kFormatVersion, 0);
-  key = hash_bytes(body.vertices.data(), sizeof(double) * body.vertices.size(), key);
-  key = hash_bytes(body.triangles.data(), sizeof(int) * body.triangles.size(), key);
+  Hash64 key;
+  key.update(&kFormatVersion, sizeof kFormatVersion);
+  key.update(body.vertices.data(), sizeof(double) * body.vertices.size());
+  key.update(body.triangles.data(), sizeof(int) * body.triangles.size());
   const double parameters[2] = {spacing, margin};
-  return hash_bytes(parameters, sizeof parameters, key);
+  key.update(parameters, sizeof parameters);
+  return key.digest();
 }
 
 std::string distance_grid_cache_name(std::uint64_t key) {
@@ -104,6 +93,14 @@ std::optional<CachedDistanceGrid> read_distance_grid_cache(const std::filesystem
   std::memcpy(&header, mapping->data(), sizeof header);
   if (header.magic != kMagic || header.version != kFormatVersion || header.key != key)
     return std::nullopt;
+  // Every byte verified before any is used: the placement (origin, spacing) as much as the
+  // samples, which are wrong everywhere under another placement.
+  Hash64 checksum = checksum_of_header(header);
+  checksum.update(mapping->data() + sizeof header, mapping->size() - sizeof header);
+  if (checksum.digest() != header.checksum) return std::nullopt;
+
+  // A matching checksum does not make the contents sound (a file could be crafted): the checks
+  // below keep every query in bounds whatever the file holds.
   CachedDistanceGrid cached;
   DistanceGrid& grid = cached.grid;
   CellTriangleLists& lists = cached.lists;
@@ -129,10 +126,9 @@ std::optional<CachedDistanceGrid> read_distance_grid_cache(const std::filesystem
   if (count > bytes || header.block_count > bytes || header.start_count > bytes ||
       header.entry_count > bytes || header.outside_count > bytes)
     return std::nullopt;
-  if (mapping->size() !=
-      sizeof header + count * sizeof(float) + header.block_count * sizeof(std::int32_t) +
-          header.start_count * sizeof(std::uint32_t) +
-          header.entry_count * sizeof(CellTriangleLists::Entry) + header.outside_count)
+  if (bytes != sizeof header + count * sizeof(float) + header.block_count * sizeof(std::int32_t) +
+                   header.start_count * sizeof(std::uint32_t) +
+                   header.entry_count * sizeof(CellTriangleLists::Entry) + header.outside_count)
     return std::nullopt;
   // Every array starts on a multiple of 4 bytes, so the views are aligned (see Header).
   std::size_t offset = sizeof header;
@@ -141,7 +137,6 @@ std::optional<CachedDistanceGrid> read_distance_grid_cache(const std::filesystem
   lists.starts = view_array<std::uint32_t>(mapping, offset, header.start_count);
   lists.entries = view_array<CellTriangleLists::Entry>(mapping, offset, header.entry_count);
   lists.triangle_outside = view_array<std::uint8_t>(mapping, offset, header.outside_count);
-  if (checksum_of(grid, lists, key) != header.checksum) return std::nullopt;
   const std::int64_t stored = static_cast<std::int64_t>(header.start_count / 512);
   for (const std::int32_t block : lists.block_of)
     if (block < -1 || block >= stored) return std::nullopt;
@@ -169,7 +164,13 @@ bool write_distance_grid_cache(const std::filesystem::path& file, std::uint64_t 
   header.start_count = lists.starts.size();
   header.entry_count = lists.entries.size();
   header.outside_count = lists.triangle_outside.size();
-  header.checksum = checksum_of(grid, lists, key);
+  Hash64 checksum = checksum_of_header(header);
+  hash_array(checksum, grid.values);
+  hash_array(checksum, lists.block_of);
+  hash_array(checksum, lists.starts);
+  hash_array(checksum, lists.entries);
+  hash_array(checksum, lists.triangle_outside);
+  header.checksum = checksum.digest();
   try {
     std::filesystem::create_directories(file.parent_path());
     write_file_atomically(file, [&](std::ostream& out) {

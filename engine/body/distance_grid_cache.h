@@ -1,8 +1,11 @@
 #pragma once
-// On-disk cache of a body's distance grid, so that the second load of a body is instant. A file
-// is named by a hash of the mesh content and the grid parameters and carries that key, its
-// dimensions and a checksum of its samples: a file that does not match in every respect is
-// ignored (and rebuilt by the caller), never trusted.
+// On-disk cache of a body's distance field, so that the second load of a body takes a fraction of
+// a second instead of seconds. A file is named by a hash of the mesh content and the grid
+// parameters, and holds a header (that key, the grid's placement and dimensions, the arrays'
+// lengths) then the arrays. Its checksum covers every byte, header included: a file that does not
+// match in every respect is ignored and rebuilt by the caller, never trusted.
+//
+// docs/robustness.md describes the format.
 
 #include <cstdint>
 #include <filesystem>
