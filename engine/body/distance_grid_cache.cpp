@@ -8,8 +8,8 @@
 #include <string_view>
 
 #include "engine/core/atomic_file.h"
+#include "engine/core/file_snapshot.h"
 #include "engine/core/hash64.h"
-#include "engine/core/mapped_file.h"
 
 namespace garment {
 namespace {
@@ -47,13 +47,13 @@ Hash64 checksum_of_header(Header header) {
   return hash;
 }
 
-// `count` elements of the mapping from `offset` on, advancing it.
+// `count` elements of the snapshot from `offset` on, advancing it.
 template <typename T>
-SharedArray<T> view_array(const std::shared_ptr<const MappedFile>& mapping, std::size_t& offset,
+SharedArray<T> view_array(const std::shared_ptr<const FileSnapshot>& snapshot, std::size_t& offset,
                           std::uint64_t count) {
-  const auto* first = reinterpret_cast<const T*>(mapping->data() + offset);
+  const auto* first = reinterpret_cast<const T*>(snapshot->data() + offset);
   offset += count * sizeof(T);
-  return SharedArray<T>(mapping, first, count);
+  return SharedArray<T>(snapshot, first, count);
 }
 
 template <typename T>
@@ -87,16 +87,16 @@ std::string distance_grid_cache_name(std::uint64_t key) {
 
 std::optional<CachedDistanceGrid> read_distance_grid_cache(const std::filesystem::path& file,
                                                            std::uint64_t key) {
-  const std::shared_ptr<const MappedFile> mapping = MappedFile::open(file);
-  if (!mapping || mapping->size() < sizeof(Header)) return std::nullopt;
+  const std::shared_ptr<const FileSnapshot> snapshot = FileSnapshot::read(file);
+  if (!snapshot || snapshot->size() < sizeof(Header)) return std::nullopt;
   Header header;
-  std::memcpy(&header, mapping->data(), sizeof header);
+  std::memcpy(&header, snapshot->data(), sizeof header);
   if (header.magic != kMagic || header.version != kFormatVersion || header.key != key)
     return std::nullopt;
   // Every byte verified before any is used: the placement (origin, spacing) as much as the
   // samples, which are wrong everywhere under another placement.
   Hash64 checksum = checksum_of_header(header);
-  checksum.update(mapping->data() + sizeof header, mapping->size() - sizeof header);
+  checksum.update(snapshot->data() + sizeof header, snapshot->size() - sizeof header);
   if (checksum.digest() != header.checksum) return std::nullopt;
 
   // A matching checksum does not make the contents sound (a file could be crafted): the checks
@@ -122,7 +122,7 @@ std::optional<CachedDistanceGrid> read_distance_grid_cache(const std::filesystem
       header.start_count % 512 != 1)
     return std::nullopt;
   // Counts no larger than the file keep the sum below from wrapping round to its size.
-  const std::uint64_t bytes = mapping->size();
+  const std::uint64_t bytes = snapshot->size();
   if (count > bytes || header.block_count > bytes || header.start_count > bytes ||
       header.entry_count > bytes || header.outside_count > bytes)
     return std::nullopt;
@@ -132,11 +132,11 @@ std::optional<CachedDistanceGrid> read_distance_grid_cache(const std::filesystem
     return std::nullopt;
   // Every array starts on a multiple of 4 bytes, so the views are aligned (see Header).
   std::size_t offset = sizeof header;
-  grid.values = view_array<float>(mapping, offset, count);
-  lists.block_of = view_array<std::int32_t>(mapping, offset, header.block_count);
-  lists.starts = view_array<std::uint32_t>(mapping, offset, header.start_count);
-  lists.entries = view_array<CellTriangleLists::Entry>(mapping, offset, header.entry_count);
-  lists.triangle_outside = view_array<std::uint8_t>(mapping, offset, header.outside_count);
+  grid.values = view_array<float>(snapshot, offset, count);
+  lists.block_of = view_array<std::int32_t>(snapshot, offset, header.block_count);
+  lists.starts = view_array<std::uint32_t>(snapshot, offset, header.start_count);
+  lists.entries = view_array<CellTriangleLists::Entry>(snapshot, offset, header.entry_count);
+  lists.triangle_outside = view_array<std::uint8_t>(snapshot, offset, header.outside_count);
   const std::int64_t stored = static_cast<std::int64_t>(header.start_count / 512);
   for (const std::int32_t block : lists.block_of)
     if (block < -1 || block >= stored) return std::nullopt;

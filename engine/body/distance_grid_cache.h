@@ -3,7 +3,9 @@
 // a second instead of seconds. A file is named by a hash of the mesh content and the grid
 // parameters, and holds a header (that key, the grid's placement and dimensions, the arrays'
 // lengths) then the arrays. Its checksum covers every byte, header included: a file that does not
-// match in every respect is ignored and rebuilt by the caller, never trusted.
+// match in every respect is ignored and rebuilt by the caller, never trusted. The file is read
+// into memory and verified before any of it is used, so that nothing done to the file afterwards
+// can reach a run that uses it (file_snapshot.h).
 //
 // docs/robustness.md describes the format.
 

@@ -1,10 +1,14 @@
-// The distance-field cache under damage (issue 40, item 6): a header altered on disk. The fields
-// are compared with a fresh build (never with the cache's own reading of itself), on real bodies
-// (tests/data/bodies).
+// The distance-field cache under damage (issue 40, item 6): a header altered on disk, a file
+// truncated while a run uses it. The fields are compared with a fresh build (never with the
+// cache's own reading of itself), on real bodies (tests/data/bodies).
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <csignal>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -118,6 +122,63 @@ class DistanceCacheTest : public QObject {
       const SignedDistanceField next = signed_distance_field(body, options);
       QVERIFY2(next.from_cache && same_field(next.grid, fresh), alteration.what);
     }
+  }
+
+  // (b) A run that has read the field keeps it whatever happens to the file: truncating it in
+  // place (a user's cleanup, `truncate`, another tool) used to kill the run with SIGBUS at its
+  // next look at a sample, the field being a view of the file's mapping.
+  void truncation_while_in_use_cannot_kill_the_run() {
+    QTemporaryDir folder;
+    QVERIFY(folder.isValid());
+    SignedDistanceOptions options;
+    options.spacing = kBodySpacing;
+    options.cache_directory = folder.path().toStdString();
+    const BodyMesh body = real_body("m_smpl_average_A40");
+    const DistanceGrid fresh = compute_signed_distance_grid(body, options.spacing, options.margin);
+    const std::filesystem::path file = signed_distance_field(body, options).cache_file;
+    QVERIFY(std::filesystem::file_size(file) > 1000000);
+    const std::uint64_t key = distance_grid_cache_key(body, options.spacing, options.margin);
+
+    // In a child process, so that a signal fails this test instead of ending it: the child reads
+    // the file as a run does, the file is truncated, and the child reads every sample and list.
+    const pid_t child = fork();
+    QVERIFY(child >= 0);
+    if (child == 0) {
+      // QtTest's handlers would report a fault as this test's crash; the parent reports it.
+      std::signal(SIGBUS, SIG_DFL);
+      std::signal(SIGSEGV, SIG_DFL);
+      const std::optional<CachedDistanceGrid> cached = read_distance_grid_cache(file, key);
+      if (!cached) _exit(3);
+      std::error_code error;
+      std::filesystem::resize_file(file, 0, error);
+      if (error) _exit(4);
+      const bool same = same_bytes(cached->grid.values, fresh.values) &&
+                        same_lists(cached->lists, fresh.surface->lists());
+      _exit(same ? 0 : 5);
+    }
+    int status = 0;
+    QCOMPARE(waitpid(child, &status, 0), child);
+    QVERIFY2(!WIFSIGNALED(status), qPrintable(QString("the reader was killed by signal %1 (%2)")
+                                                  .arg(WTERMSIG(status))
+                                                  .arg(strsignal(WTERMSIG(status)))));
+    QVERIFY(WIFEXITED(status));
+    QCOMPARE(WEXITSTATUS(status), 0);
+    QCOMPARE(std::filesystem::file_size(file), std::uintmax_t{0});
+
+    // The whole path in this process: the emptied file is rebuilt; a field read from the cache
+    // answers as the fresh one after its file is cut in half.
+    QVERIFY(!signed_distance_field(body, options).from_cache);
+    const SignedDistanceField in_use = signed_distance_field(body, options);
+    QVERIFY(in_use.from_cache);
+    std::filesystem::resize_file(file, std::filesystem::file_size(file) / 2);
+    QVERIFY(same_field(in_use.grid, fresh));
+    for (double z = -0.3; z <= 0.3; z += 0.01) {
+      const Eigen::Vector3d point(0.0, 1.2, z);
+      QCOMPARE(in_use.grid.value(point), fresh.value(point));
+    }
+    const SignedDistanceField after = signed_distance_field(body, options);
+    QVERIFY(!after.from_cache);
+    QVERIFY(same_field(after.grid, fresh));
   }
 
   // The checksum is XXH64: the published values of xxHash's reference implementation, and the
