@@ -1,11 +1,20 @@
 #include "engine/body/distance_grid_cache.h"
 
+#include <signal.h>
+
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <string_view>
+#include <vector>
 
 #include "engine/core/atomic_file.h"
 #include "engine/core/file_snapshot.h"
@@ -65,6 +74,31 @@ void write_array(std::ostream& out, const SharedArray<T>& array) {
 template <typename T>
 void hash_array(Hash64& hash, const SharedArray<T>& array) {
   hash.update(array.data(), array.size() * sizeof(T));
+}
+
+// "sdf-" + 16 hex digits + ".bin", as distance_grid_cache_name writes.
+bool is_field_name(std::string_view name) {
+  constexpr std::size_t kLength = 4 + 16 + 4;
+  return name.size() == kLength && name.starts_with("sdf-") && name.ends_with(".bin") &&
+         std::all_of(name.begin() + 4, name.begin() + 20,
+                     [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); });
+}
+
+// The process id of a temporary of write_file_atomically for a field ("<field>.tmp-<pid>-<hex>"),
+// or 0 for any other name.
+pid_t temporary_process(std::string_view name) {
+  const std::size_t mark = name.find(".tmp-");
+  if (mark == std::string_view::npos || !is_field_name(name.substr(0, mark))) return 0;
+  const std::string_view rest = name.substr(mark + 5);
+  pid_t pid = 0;
+  const auto [end, error] = std::from_chars(rest.data(), rest.data() + rest.size(), pid);
+  if (error != std::errc() || pid <= 0 || end == rest.data() + rest.size() || *end != '-') return 0;
+  return pid;
+}
+
+bool process_is_gone(pid_t pid) {
+  // EPERM: the process exists but belongs to another user.
+  return ::kill(pid, 0) != 0 && errno == ESRCH;
 }
 
 }  // namespace
@@ -185,6 +219,74 @@ bool write_distance_grid_cache(const std::filesystem::path& file, std::uint64_t 
     return false;
   }
   return true;
+}
+
+std::uint64_t distance_grid_cache_limit() {
+  const char* text = std::getenv("GARMENT_CACHE_LIMIT");
+  if (!text || !*text) return kDefaultDistanceGridCacheLimit;
+  const std::string_view value(text);
+  std::uint64_t number = 0;
+  const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), number);
+  if (error != std::errc()) return kDefaultDistanceGridCacheLimit;
+  const std::string_view unit(end, static_cast<std::size_t>(value.data() + value.size() - end));
+  int shift = 0;
+  if (unit == "K" || unit == "k")
+    shift = 10;
+  else if (unit == "M" || unit == "m")
+    shift = 20;
+  else if (unit == "G" || unit == "g")
+    shift = 30;
+  else if (!unit.empty())
+    return kDefaultDistanceGridCacheLimit;
+  // A size past 2^64 bytes means no limit.
+  if (number > (std::numeric_limits<std::uint64_t>::max() >> shift))
+    return std::numeric_limits<std::uint64_t>::max();
+  return number << shift;
+}
+
+void tidy_distance_grid_cache(const std::filesystem::path& directory,
+                              const std::filesystem::path& in_use, std::uint64_t limit) {
+  namespace fs = std::filesystem;
+  using Clock = fs::file_time_type::clock;
+  const fs::file_time_type now = Clock::now();
+  std::error_code error;
+  if (!in_use.empty()) fs::last_write_time(in_use, now, error);
+  // A field of ~250 MB is written in seconds: a temporary untouched for an hour belongs to no
+  // write in progress, even if its process id now names another process.
+  const fs::file_time_type abandoned = now - std::chrono::hours(1);
+
+  struct Field {
+    fs::path path;
+    fs::file_time_type used;
+    std::uintmax_t size;
+  };
+  std::vector<Field> fields;
+  std::uint64_t total = 0;
+  for (fs::directory_iterator entry(directory, error), end; !error && entry != end;
+       entry.increment(error)) {
+    const std::string name = entry->path().filename().string();
+    std::error_code entry_error;
+    const fs::file_time_type used = entry->last_write_time(entry_error);
+    const std::uintmax_t size = entry->file_size(entry_error);
+    if (entry_error) continue;  // removed meanwhile, or not a regular file
+    if (is_field_name(name)) {
+      total += size;
+      if (entry->path().filename() != in_use.filename())
+        fields.push_back({entry->path(), used, size});
+    } else if (const pid_t pid = temporary_process(name);
+               pid != 0 && (process_is_gone(pid) || used < abandoned)) {
+      fs::remove(entry->path(), entry_error);
+    }
+  }
+  std::sort(fields.begin(), fields.end(), [](const Field& a, const Field& b) {
+    return a.used != b.used ? a.used < b.used : a.path < b.path;
+  });
+  for (const Field& field : fields) {
+    if (total <= limit) break;
+    // Gone without error when another process removed it first.
+    fs::remove(field.path, error);
+    if (!error) total -= field.size;
+  }
 }
 
 }  // namespace garment
