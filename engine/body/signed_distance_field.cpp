@@ -455,6 +455,8 @@ SignedDistanceField signed_distance_field(const BodyMesh& body,
                                      field.grid.surface->lists()))
         field.cache_file.clear();
     }
+    // Once the field is in memory, so that the file just used is the most recent and stays.
+    tidy_distance_grid_cache(directory, field.cache_file, distance_grid_cache_limit());
   } else {
     field.grid = compute_signed_distance_grid(body, options.spacing, options.margin);
   }

@@ -1,8 +1,8 @@
 #pragma once
 // A read-only array whose elements live in storage it shares: a vector it took over, or a range of
-// a block owned elsewhere (a read-only mapping of a cache file, mapped_file.h) that stays alive as
+// a block owned elsewhere (a cache file read into memory, file_snapshot.h) that stays alive as
 // long as an array views it. Copies are cheap and see the same elements, which is what lets a
-// body's 100+ MB distance field be used straight from the page cache instead of read into memory.
+// body's 100+ MB distance field be used where its cache file was read, without a copy per array.
 
 #include <algorithm>
 #include <cstddef>

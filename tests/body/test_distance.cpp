@@ -249,7 +249,7 @@ class BodyDistanceTest : public QObject {
     }
     QVERIFY(inside > 10 && covered > 10);
 
-    // A field read from the file views its mapping: it keeps its samples and lists when the file
+    // A field read from the file views its snapshot: it keeps its samples and lists when the file
     // is deleted and written again, as another process rebuilding the cache would.
     {
       const SignedDistanceField mapped = signed_distance_field(body, options);
