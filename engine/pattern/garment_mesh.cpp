@@ -131,16 +131,25 @@ Garment build_garment(const Pattern& pattern, const MeshingOptions& options, Obs
     for (Eigen::Index i = 0; i < outline.rows(); ++i)
       polygon[i] = outline.row(i).transpose();
     if (!separate_thin_crossings(polygon, kOutlineSliverTolerance)) {
-      const auto crossing = find_polygon_self_intersection(polygon, kOutlineSliverTolerance)
-                                .value_or(std::make_pair(0, 0));
+      // The crossing that is no sliver, else the first sliver that would not come apart:
+      // find_polygon_self_intersection tolerates those, and its empty answer was once reported as
+      // "edges 0 and 0".
+      std::pair<int, int> crossing;
+      if (const auto wide = find_polygon_self_intersection(polygon, kOutlineSliverTolerance)) {
+        crossing = *wide;
+      } else {
+        const PolygonCrossing left = polygon_crossings(polygon, 1).front();
+        crossing = {left.first_segment, left.second_segment};
+      }
       const auto edge_of = [&](int point) {
         for (std::size_t e = 0; e < piece.edge_vertices.size(); ++e)
           if (point >= piece.edge_vertices[e].front() && point < piece.edge_vertices[e].back())
             return e;
         return piece.edge_vertices.size() - 1;
       };
-      errors[p] = "panel '" + piece.name + "', edges " + std::to_string(edge_of(crossing.first)) +
-                  " and " + std::to_string(edge_of(crossing.second)) +
+      const std::size_t first = edge_of(crossing.first), second = edge_of(crossing.second);
+      errors[p] = "panel '" + piece.name + "', edge " + std::to_string(first) +
+                  (second != first ? " and edge " + std::to_string(second) : "") +
                   ": the outline is too narrow to mesh at " + std::to_string(h * 1000.0) +
                   " mm (sampled edges cross)";
       return;

@@ -41,6 +41,10 @@ class PatternErrorsTest : public QObject {
     QTest::newRow("self-intersecting outline")
         << "self_intersecting.json"
         << QStringList{"panel 'bowtie', edge 1 and edge 3", "intersects itself"};
+    // Its edge 0 (vertices 0 to 1) crosses edges 2 and 3; it was refused as "edges 0 and 0: the
+    // outline is too narrow to mesh".
+    QTest::newRow("self-intersecting pentagram")
+        << "pentagram.json" << QStringList{"panel 'star', edge 0 and edge 2", "intersects itself"};
     QTest::newRow("non-finite number")
         << "non_finite.json" << QStringList{"line 21", "out of range"};
     QTest::newRow("unknown curvature")
