@@ -80,6 +80,8 @@ int run_command(const std::vector<std::string>& args) {
     throw UsageError("--edge-length must be positive (metres)");
   const std::filesystem::path body_path = line.value("--body").value_or(default_body_path());
   const std::shared_ptr<const Scene> scene = load_scene(pattern_path, body_path, scene_options);
+  for (const std::string& warning : scene->body->warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const Garment& garment = *scene->garment;
 
   SessionOptions options;
