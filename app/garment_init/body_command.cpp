@@ -34,6 +34,9 @@ int body_command(const std::vector<std::string>& args) {
     throw UsageError("--spacing must be between 0.001 and 0.1 (metres)");
   options.use_cache = !line.has("--no-cache");
   const Body body = load_body(path, options);
+  // On stderr, with --json too: the report stays parseable and the warning is seen.
+  for (const std::string& warning : body.warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
 
   nlohmann::ordered_json report;
   report["source"] = body.mesh.source;
@@ -71,6 +74,7 @@ int body_command(const std::vector<std::string>& args) {
     report["locations"].push_back(entry);
   }
   if (!body.overrides_file.empty()) report["overrides"] = body.overrides_file.string();
+  report["warnings"] = body.warnings;
   const DistanceGrid& grid = body.distance.grid;
   report["sdf"] = {
       {"spacing_m", grid.spacing},          {"size", {grid.size.x(), grid.size.y(), grid.size.z()}},

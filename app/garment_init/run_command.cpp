@@ -101,6 +101,8 @@ int run_command(const std::vector<std::string>& args) {
   SessionOptions options;
   if (parameters) options.arrangement = load_parameters(*parameters);
   const std::shared_ptr<const Scene> scene = load_scene(pattern_path, body_path, scene_options);
+  for (const std::string& warning : scene->body->warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const Garment& garment = *scene->garment;
   if (line.has("--seed-pieces")) {
     std::vector<std::string> names(kBodyLocationNames.begin(), kBodyLocationNames.end());

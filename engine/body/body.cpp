@@ -3,6 +3,7 @@
 #include <string>
 
 #include "engine/body/body_cross_sections.h"
+#include "engine/body/body_warnings.h"
 #include "engine/body/location_overrides.h"
 #include "engine/core/error.h"
 
@@ -17,6 +18,7 @@ const BodyLocation& Body::location(std::string_view name) const {
 Body load_body(const std::filesystem::path& obj, const SignedDistanceOptions& options) {
   Body body;
   body.mesh = load_body_obj(obj);
+  body.warnings = body_warnings(body.mesh);
   const BodySlicer slicer(body.mesh);
   body.landmarks = find_body_landmarks(body.mesh, slicer);
   const std::filesystem::path overrides_file = location_overrides_path(obj);

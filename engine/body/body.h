@@ -3,6 +3,7 @@
 // locations, loaded in one call.
 
 #include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -19,6 +20,8 @@ struct Body {
   BodyLandmarks landmarks;
   std::vector<BodyLocation> locations;   // the 15, in the order of kBodyLocationNames
   std::filesystem::path overrides_file;  // the <body>.locations.json applied; empty if none
+  // What is odd about the body (body_warnings.h), "<file>: ..." each: shown, not refused.
+  std::vector<std::string> warnings;
 
   // Throws InputError for a name that is not one of kBodyLocationNames.
   const BodyLocation& location(std::string_view name) const;

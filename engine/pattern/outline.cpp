@@ -197,13 +197,38 @@ std::optional<std::pair<int, int>> find_polygon_self_intersection(
       perimeter += (loop[(k + 1) % loop.size()] - loop[k]).norm();
     return perimeter > 0.0 ? 2.0 * std::abs(polygon_signed_area(loop)) / perimeter : 0.0;
   };
+  // Whether the segments from `from` forward to `to` (both included) and those from `from2` to
+  // `to2` cross each other somewhere away from the points `a` and `b`: then a loop along them
+  // crosses itself, its lobes wind opposite ways, and its signed area cancels to nothing however
+  // wide it is. A pentagram's edges 0 and 2 and edges 1 and 3 bound such a bow tie (crossed by
+  // edges 0 and 3): it passed as a sliver, and the pentagram as a valid outline.
+  const auto in_range = [n](int segment, int from, int to) {
+    return (segment - from + n) % n <= (to - from + n) % n;
+  };
+  const auto crossed_between = [&](int from, int to, int from2, int to2, const Eigen::Vector2d& a,
+                                   const Eigen::Vector2d& b) {
+    for (const PolygonCrossing& other : crossings) {
+      if ((other.point - a).norm() < sliver_tolerance ||
+          (other.point - b).norm() < sliver_tolerance)
+        continue;  // the loop's own corners, or a crossing within a sliver's width of them
+      const int k = other.first_segment, l = other.second_segment;
+      const bool k_on = in_range(k, from, to) || in_range(k, from2, to2);
+      const bool l_on = in_range(l, from, to) || in_range(l, from2, to2);
+      if (k_on && l_on) return true;
+    }
+    return false;
+  };
   // A crossing next to a corner cuts off a loop between its two segments; two crossings of the same
-  // pair of chains enclose a lens. Either is tolerated when it is a thin sliver.
+  // pair of chains enclose a lens. Either is tolerated when it is a thin sliver that does not cross
+  // itself.
   const auto thin_loop = [&](const PolygonCrossing& c) {
+    const int i = c.first_segment, j = c.second_segment;
     std::vector<Eigen::Vector2d> inner{c.point}, outer{c.point};
-    append_chain(inner, c.first_segment, c.second_segment, true);
-    append_chain(outer, c.second_segment, c.first_segment, true);
-    return thickness(inner) < sliver_tolerance || thickness(outer) < sliver_tolerance;
+    append_chain(inner, i, j, true);
+    append_chain(outer, j, i, true);
+    return (thickness(inner) < sliver_tolerance &&
+            !crossed_between(i, j, i, j, c.point, c.point)) ||
+           (thickness(outer) < sliver_tolerance && !crossed_between(j, i, j, i, c.point, c.point));
   };
   const auto thin_lens = [&](const PolygonCrossing& a, const PolygonCrossing& b) {
     std::vector<Eigen::Vector2d> lens{a.point};
@@ -212,7 +237,10 @@ std::optional<std::pair<int, int>> find_polygon_self_intersection(
     lens.push_back(b.point);
     if (b.second_segment != a.second_segment)
       append_chain(lens, b.second_segment, a.second_segment, b.second_segment < a.second_segment);
-    return thickness(lens) < sliver_tolerance;
+    return thickness(lens) < sliver_tolerance &&
+           !crossed_between(a.first_segment, b.first_segment,
+                            std::min(a.second_segment, b.second_segment),
+                            std::max(a.second_segment, b.second_segment), a.point, b.point);
   };
   for (const PolygonCrossing& crossing : crossings) {
     bool tolerated = thin_loop(crossing);

@@ -1,12 +1,14 @@
 // garment-init body: the report of a body (with the torso's girths, against the body's own
-// measurement file), and bad bodies refused with exit status 1.
+// measurement file), bad bodies refused with exit status 1, odd ones warned about on stderr.
 
+#include <QFile>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QProcess>
 #include <QTemporaryDir>
 #include <QtTest>
+#include <tuple>
 
 #include "support/test_paths.h"
 
@@ -82,6 +84,52 @@ class BodyCommandTest : public QObject {
     for (const char* name :
          {"neck_front", "chest_back_left", "pelvis", "landmark heights", "torso girths"})
       QVERIFY2(result.out.contains(name), name);
+  }
+
+  // Issue 40: f_smpl_average_A40 turned 180° about y (x and z negated), and twice in one file (the
+  // second copy 1 cm to the side, on vertices 6891-13780), were reported without a word.
+  void odd_bodies_are_warned_about_on_stderr() {
+    QFile source(
+        QString::fromStdString(garment::test::test_data("bodies/f_smpl_average_A40.obj").string()));
+    QVERIFY(source.open(QIODevice::ReadOnly | QIODevice::Text));
+    QByteArray turned, vertices, faces;
+    while (!source.atEnd()) {
+      const QByteArray line = source.readLine();
+      const QList<QByteArray> words = line.simplified().split(' ');
+      if (words[0] == "v") {
+        turned += "v " + QByteArray::number(-words[1].toDouble(), 'g', 9) + " " + words[2] + " " +
+                  QByteArray::number(-words[3].toDouble(), 'g', 9) + "\n";
+        vertices += "v " + QByteArray::number(words[1].toDouble() + 0.01, 'g', 9) + " " + words[2] +
+                    " " + words[3] + "\n";
+      } else {
+        turned += line;
+      }
+      if (words[0] == "f") {
+        faces += "f";
+        for (qsizetype k = 1; k < words.size(); ++k)  // "12/5/3" counts as vertex 12
+          faces += " " + QByteArray::number(words[k].split('/')[0].toInt() + 6890);
+        faces += "\n";
+      }
+    }
+    source.seek(0);
+    const QByteArray twice = source.readAll() + "\n" + vertices + faces;
+    for (const auto& [name, contents, warning] :
+         {std::tuple{"turned.obj", turned, QByteArray(": the body faces -z (")},
+          std::tuple{"twice.obj", twice,
+                     QByteArray(": vertices 1 and 6891: two overlapping closed surfaces")}}) {
+      const QString path = cache.filePath(name);
+      QFile file(path);
+      QVERIFY(file.open(QIODevice::WriteOnly) && file.write(contents) == contents.size());
+      file.close();
+      const Run result = run({"body", path, "--json", "--spacing", "0.02", "--no-cache"});
+      QVERIFY2(result.exit_code == 0, result.err.constData());
+      QVERIFY2(result.err.startsWith("warning: " + path.toUtf8() + warning),
+               result.err.constData());
+      const QJsonArray warnings =
+          QJsonDocument::fromJson(result.out).object()["warnings"].toArray();
+      QCOMPARE(warnings.size(), 1);
+      QVERIFY(warnings[0].toString().startsWith(path + QString::fromUtf8(warning)));
+    }
   }
 
   void bad_body_exits_1_with_the_message() {

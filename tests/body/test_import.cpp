@@ -1,12 +1,16 @@
 // Body OBJ import: the real bodies load as closed outward meshes in metres; every kind of bad file
-// is rejected with a message naming the file and the line.
+// is rejected with a message naming the file and the line; a body turned the wrong way or holding
+// two copies of itself loads with a warning.
 
 #include <QtTest>
 
 #include <Eigen/Geometry>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "engine/body/body_mesh.h"
+#include "engine/body/body_warnings.h"
 #include "engine/body/default_body.h"
 #include "engine/core/error.h"
 #include "support/test_paths.h"
@@ -38,6 +42,54 @@ bool closed_and_consistent(const BodyMesh& mesh) {
     if (reverse == directed.end() || reverse->second != 1) return false;
   }
   return true;
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The OBJ with every vertex (x, y, z) written as (a x + b z, y, c x + d z): turned about y.
+std::string turned_obj(const std::string& obj, double a, double b, double c, double d) {
+  std::istringstream in(obj);
+  std::ostringstream out;
+  out.precision(9);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("v ", 0) == 0) {
+      double x, y, z;
+      std::istringstream(line.substr(2)) >> x >> y >> z;
+      out << "v " << a * x + b * z << " " << y << " " << c * x + d * z << "\n";
+    } else {
+      out << line << "\n";
+    }
+  }
+  return out.str();
+}
+
+// The OBJ twice in one file: its vertices again, moved by `offset` m along x, and its faces again
+// on those vertices (`vertex_count` in the file).
+std::string doubled_obj(const std::string& obj, int vertex_count, double offset) {
+  std::istringstream in(obj);
+  std::ostringstream vertices, faces;
+  vertices.precision(9);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string kind;
+    words >> kind;
+    if (kind == "v") {
+      double x, y, z;
+      words >> x >> y >> z;
+      vertices << "v " << x + offset << " " << y << " " << z << "\n";
+    } else if (kind == "f") {
+      faces << "f";
+      for (std::string corner; words >> corner;)
+        faces << " " << std::stoi(corner) + vertex_count;  // "12/5/3" counts as vertex 12
+      faces << "\n";
+    }
+  }
+  return obj + "\n" + vertices.str() + faces.str();
 }
 
 }  // namespace
@@ -77,6 +129,48 @@ class BodyImportTest : public QObject {
       QVERIFY2(std::abs(body.height() - expected.height) < 0.002, expected.name);
       QVERIFY2(closed_and_consistent(body), expected.name);
       QVERIFY2(signed_volume(body) > 0.04, expected.name);
+    }
+  }
+
+  // Issue 40: both loaded without a word. The body, turned by 180° and by 90° about y, and in two
+  // overlapping copies (the second 1 cm to the side), against itself as it is.
+  void body_facing_minus_z_is_warned_about() {
+    const std::string obj = read_text(test::test_data("bodies/f_smpl_average_A40.obj"));
+    QVERIFY(body_warnings(parse_body_obj(obj, "upright.obj")).empty());
+    const std::vector<std::string> back =
+        body_warnings(parse_body_obj(turned_obj(obj, -1, 0, 0, -1), "back.obj"));
+    QCOMPARE(back.size(), std::size_t{1});
+    QVERIFY2(
+        back[0].starts_with("back.obj: the body faces -z (") &&
+            back[0].find("turn the body by 180° about the vertical (y) axis") != std::string::npos,
+        back[0].c_str());
+    // x' = z, z' = -x: the front, +z, turned to +x.
+    const std::vector<std::string> side =
+        body_warnings(parse_body_obj(turned_obj(obj, 0, 1, -1, 0), "side.obj"));
+    QCOMPARE(side.size(), std::size_t{1});
+    QVERIFY2(side[0].starts_with("side.obj: the body faces +x ("), side[0].c_str());
+  }
+
+  void two_copies_of_a_body_are_warned_about() {
+    const std::string obj = read_text(test::test_data("bodies/f_smpl_average_A40.obj"));
+    const std::vector<std::string> warnings =
+        body_warnings(parse_body_obj(doubled_obj(obj, 6890, 0.01), "twice.obj"));
+    QCOMPARE(warnings.size(), std::size_t{1});
+    QVERIFY2(warnings[0].starts_with("twice.obj: vertices 1 and 6891: two overlapping closed "
+                                     "surfaces of 13776 and 13776 triangles"),
+             warnings[0].c_str());
+  }
+
+  // No false alarm on the real bodies, nor on a cube (no feet, one surface).
+  void real_bodies_have_no_warnings() {
+    std::vector<std::filesystem::path> bodies{default_body_path(),
+                                              test::test_data("bodies/m_smpl_average_A40.obj"),
+                                              test::test_data("bodies/cube_cm_inside_out.obj")};
+    if (test::shared_data_available())
+      bodies.push_back(test::shared_data("bodies/mean_all_apart.obj"));
+    for (const std::filesystem::path& body : bodies) {
+      const std::vector<std::string> warnings = body_warnings(load_body_obj(body));
+      QVERIFY2(warnings.empty(), warnings.empty() ? "" : warnings.front().c_str());
     }
   }
 

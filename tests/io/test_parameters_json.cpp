@@ -1,6 +1,9 @@
 // Arrangement parameters from JSON (`--parameters`): both spellings of a key take effect, and
-// anything that would be silently ignored is an error naming the key.
+// anything that would be silently ignored, or that the arrangement cannot use, is an error naming
+// the file and the key.
 
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QtTest>
 
 #include "engine/core/error.h"
@@ -114,6 +117,58 @@ class ParametersJsonTest : public QObject {
     QVERIFY2(negative.contains("post_process_own_layer_repulsion_factor"), qPrintable(negative));
     QVERIFY(error_of(R"({"post_process_own_layer_repulsion_factor": 0})").isEmpty());
   }
+
+  // Issue 40: these reached the solvers, which refused them with "the energy of the initial
+  // positions is not finite" or "QuasiNewtonSettings out of range", naming neither file nor key.
+  void unusableValuesNameTheFileAndTheKey() {
+    for (const auto& [json, place] :
+         {std::pair{R"({"energy": {"gravity": 1e308}})", "p.json: energy.gravity: 1e+308"},
+          std::pair{R"({"energy.stretch_stiffness": -1000})",
+                    "p.json: energy.stretch_stiffness: -1000"},
+          std::pair{R"({"post_process_iterations": -1})", "p.json: post_process_iterations: -1"},
+          std::pair{R"({"rings_per_round": 0})", "p.json: rings_per_round: 0"}}) {
+      const QString message = error_of(json);
+      QVERIFY2(message.startsWith(place) && message.contains("out of range: must be"),
+               qPrintable(json + (" -> " + message)));
+    }
+    QCOMPARE(error_of(R"({"energy": {"gravity": 1e308}})"),
+             QString("p.json: energy.gravity: 1e+308 is out of range: must be between 0 and 100 "
+                     "(m/s²; 9.81 on Earth)"));
+    QVERIFY(error_of(R"({"energy": {"gravity": 0}, "post_process_iterations": 0})").isEmpty());
+  }
+
+  // An iteration count of 2.5 was truncated to 2, and 1e308 converted to int (undefined).
+  void wholeNumberKeysRefuseFractions() {
+    QCOMPARE(error_of(R"({"align": {"first": 2.5}})"),
+             QString("p.json: align.first: 2.5 is not a whole number"));
+    QVERIFY2(error_of(R"({"align": {"first": 1e308}})").startsWith("p.json: align.first: 1e+308"),
+             qPrintable(error_of(R"({"align": {"first": 1e308}})")));
+    QCOMPARE(applied(R"({"align": {"first": 2.0}})").align.first, 2);
+  }
+
+  // Every key, spelt as the report writes it, refuses ±1e308: each has an upper and a lower bound.
+  void everyKeyIsBounded() {
+    const QJsonObject all =
+        QJsonDocument::fromJson(QByteArray::fromStdString(parameters_json({}))).object();
+    QStringList keys;
+    for (auto group = all.begin(); group != all.end(); ++group) {
+      if (group.value().isObject()) {
+        for (const QString& key : group.value().toObject().keys())
+          keys << group.key() + "." + key;
+      } else {
+        keys << group.key();
+      }
+    }
+    QVERIFY2(keys.size() > 70, qPrintable(keys.join(", ")));
+    for (const QString& key : keys)
+      for (const char* huge : {"1e308", "-1e308"}) {
+        const QString message = error_of("{\"" + key.toStdString() + "\": " + huge + "}");
+        QVERIFY2(message.startsWith("p.json: " + key + ": "),
+                 qPrintable(key + " = " + huge + " -> '" + message + "'"));
+      }
+  }
+
+  void defaultsAreInRange() { QCOMPARE(error_of(parameters_json({})), QString()); }
 
   void reportedParametersReadBack() {
     ArrangementParameters changed;

@@ -41,6 +41,17 @@ class PatternErrorsTest : public QObject {
     QTest::newRow("self-intersecting outline")
         << "self_intersecting.json"
         << QStringList{"panel 'bowtie', edge 1 and edge 3", "intersects itself"};
+    // Its edge 0 (vertices 0 to 1) crosses edges 2 and 3; it was refused as "edges 0 and 0: the
+    // outline is too narrow to mesh".
+    QTest::newRow("self-intersecting pentagram")
+        << "pentagram.json" << QStringList{"panel 'star', edge 0 and edge 2", "intersects itself"};
+    // A 3-4-5 mm triangle: the 5 mm edge stays, the 3 mm one merges, the 4 mm one would take the
+    // run to 7 mm, over a quarter of 20 mm, and stays: two points, no polygon.
+    QTest::newRow("panel under the mesh resolution")
+        << "tiny_panel.json"
+        << QStringList{"panel 'tiny'",
+                       "smaller than the mesh resolution: 12 mm round, it leaves "
+                       "2 point(s) at 20 mm"};
     QTest::newRow("non-finite number")
         << "non_finite.json" << QStringList{"line 21", "out of range"};
     QTest::newRow("unknown curvature")

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <map>
+#include <numbers>
 
 #include "engine/core/mesh_topology.h"
 #include "engine/pattern/edge_curve.h"
@@ -212,6 +213,47 @@ class PatternMeshTest : public QObject {
         }
       }
     }
+  }
+
+  // Issue 40: a 10,000-point circle of 1 m diameter, its edges of 0.31 mm each under a quarter of
+  // the 20 mm mesh edge, was refused as "smaller than the mesh resolution". It is meshed: the
+  // circle's area, its outline on the circle and at most a quarter of the mesh edge plus one file
+  // edge (5.3 mm) between outline points, triangles as good as every other pattern's.
+  void denseOutlineIsMeshed() {
+    constexpr int kCount = 10000;
+    std::string vertices, edges;
+    char number[64];
+    for (int i = 0; i < kCount; ++i) {
+      const double angle = 2.0 * std::numbers::pi * i / kCount;
+      std::snprintf(number, sizeof number, "%s[%.9f,%.9f]", i ? "," : "", 50.0 * std::cos(angle),
+                    50.0 * std::sin(angle));
+      vertices += number;
+      edges += std::string(i ? "," : "") + "{\"endpoints\":[" + std::to_string(i) + "," +
+               std::to_string((i + 1) % kCount) + "]}";
+    }
+    const Garment garment =
+        build_garment(parse_pattern(R"({"pattern": {"panels": {"disc": {"vertices": [)" + vertices +
+                                        R"(], "edges": [)" + edges + R"(]}}, "stitches": []}})",
+                                    "disc.json"));
+    QCOMPARE(garment.pieces.size(), std::size_t{1});
+    const double circle = std::numbers::pi * 0.5 * 0.5;
+    const double area = piece_rest_areas(garment)[0];
+    QVERIFY2(std::abs(area - circle) < 0.001 * circle, qPrintable(QString::number(area)));
+    // The piece's outline repeats a merged point once per edge merged into it.
+    std::vector<int> outline = garment.pieces[0].outline;
+    outline.erase(std::unique(outline.begin(), outline.end()), outline.end());
+    QVERIFY2(outline.size() >= 300 && outline.size() < kCount,
+             qPrintable(QString::number(outline.size())));
+    for (std::size_t k = 0; k < outline.size(); ++k) {
+      const Eigen::Vector2d p = local_position(garment, outline[k]);
+      const Eigen::Vector2d next = local_position(garment, outline[(k + 1) % outline.size()]);
+      QVERIFY2(std::abs(p.norm() - 0.5) < 1e-6 && (next - p).norm() < 0.0053,
+               qPrintable(QString("outline point %1: radius %2 m, %3 m to the next")
+                              .arg(k)
+                              .arg(p.norm())
+                              .arg((next - p).norm())));
+    }
+    QVERIFY(rest_mesh_quality(garment).min_angle_degrees >= 20.0);
   }
 
   void unitsAreConvertedToMetres() {
