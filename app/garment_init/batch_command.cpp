@@ -23,6 +23,7 @@
 #include "engine/body/default_body.h"
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "engine/pattern/pattern_files.h"
 
 namespace garment::cli {

@@ -7,8 +7,8 @@
 #include <map>
 #include <numbers>
 
-#include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 
 namespace garment {
 namespace {

@@ -2,7 +2,9 @@
 // 1 cm squares, as a user would run it. The squares carry no translation, so every piece the
 // arrangement cannot reach (none is sewn to another) stays where the file puts it: all of them on
 // top of each other, where every edge touches a triangle of every other piece. Bounds:
-//   - 2,000 squares finish (a garment is written) within 10 s and 1 GiB peak resident memory.
+//   - 2,000 squares finish (a garment is written) within 10 s and 1 GiB peak resident memory;
+//   - 20,000 squares are refused up front by the panel budget, naming the file and the number,
+//     within 30 s and 2 GiB.
 // Times are multiplied by GARMENT_TEST_TIME_SCALE (the sanitizer build sets 5), memory by 4 under
 // AddressSanitizer. The program is killed at its time bound, so that a regression fails instead
 // of running for minutes.
@@ -105,6 +107,23 @@ class BoundsTest : public QObject {
       groups += line.rfind("g square_", 0) == 0;
     QCOMPARE(groups, 2000);
     QVERIFY2(run.peak_megabytes <= 1024.0 * kMemoryScale,
+             qPrintable(QString("peak %1 MiB").arg(run.peak_megabytes)));
+  }
+
+  void twenty_thousand_squares_refused() {
+    const fs::path pattern = fs::path(folder_.path().toStdString()) / "squares_20000.json";
+    write_squares(pattern, 20000);
+    const double bound = 30.0 * garment::test::time_scale();
+    const Run run = garment_init(
+        {"run", text(pattern), "-o", QString(folder_.path()) + "/squares_20000.obj"}, bound);
+    qInfo("20,000 squares: %.1f s, peak %.0f MiB, exit %d: %s", run.seconds, run.peak_megabytes,
+          run.exit_code, run.err.constData());
+    QVERIFY2(run.finished, qPrintable(QString("not finished within %1 s").arg(bound)));
+    QCOMPARE(run.exit_code, 1);
+    const QByteArray expected =
+        text(pattern).toUtf8() + ": the pattern has 20000 panels, over the budget of 5000";
+    QVERIFY2(run.err.contains(expected), run.err.constData());
+    QVERIFY2(run.peak_megabytes <= 2048.0 * kMemoryScale,
              qPrintable(QString("peak %1 MiB").arg(run.peak_megabytes)));
   }
 
