@@ -3,7 +3,8 @@
 // object, missing or wrongly typed keys, non-finite numbers, coordinates beyond 10 km, unknown
 // curvature types, dangling panel/edge references in stitches, vertex indices out of range, edges
 // that do not form one closed loop, an edge in two stitches, a stitch of an edge with itself,
-// zero-length edges, self-intersecting outlines, an empty pattern; past kMaxPanels panels or
+// zero-length edges, self-intersecting outlines, an empty pattern, a panel name that is empty,
+// holds a control character or begins or ends with a space (name_fault); past kMaxPanels panels or
 // kMaxStitches stitches, BudgetError.
 
 #include <nlohmann/json.hpp>
@@ -21,6 +22,7 @@
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
 #include "engine/core/input_file.h"
+#include "engine/core/text.h"
 #include "engine/pattern/outline.h"
 #include "engine/pattern/pattern.h"
 
@@ -455,8 +457,14 @@ Pattern parse_pattern(const std::string& json_text, const std::string& source) {
   }
   for (const auto& [name, value] : panels.items())
     if (!ordered.count(name)) order.push_back(name);
-  for (const std::string& name : order)
+  for (const std::string& name : order) {
+    // Names are data: every export writes them as they are (an OBJ `g` line, a glTF name), so a
+    // name that would break a line or vanish is refused here, once for every writer.
+    if (const std::string fault = name_fault(name); !fault.empty())
+      reader.fail("pattern.panels, panel " + std::to_string(pattern.panels.size()),
+                  "the panel name '" + name + "' is refused: " + fault);
     pattern.panels.push_back(read_panel(name, panels[name], scale, reader));
+  }
 
   std::map<std::string, int> panel_of_name;
   for (std::size_t p = 0; p < pattern.panels.size(); ++p)

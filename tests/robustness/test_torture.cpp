@@ -7,6 +7,8 @@
 // Patterns go through load_pattern + build_garment with the default MeshingOptions (20 mm, budget
 // 400,000 vertices); bodies through load_body_obj. With GARMENT_ROBUSTNESS_TABLE=<file> the test
 // writes the outcome of every case as the markdown table of docs/robustness.md.
+// Every error message must be printable ASCII after the file's path: text quoted from the input
+// (names, values, lines) is escaped (\x1b), never echoed raw to the terminal.
 // Hostile paths (a FIFO, /dev/zero, a file over the input size limit) run in a child process that
 // a timer kills and whose address space is capped, so that a reader that blocks or never ends
 // fails its row instead of hanging the suite or exhausting the machine.
@@ -457,6 +459,36 @@ std::vector<Case> cases() {
   pattern_error("pattern: file is missing", "", nullptr, {"cannot open"});
   pattern_error("pattern: path is a directory", ".", nullptr, {"is a directory"});
 
+  // Names are data: one that an export cannot write as it is is refused at import, with the
+  // panel's place (the panel index in the pattern's order) and the name escaped.
+  pattern_error("pattern: newline in a panel name", "p.json",
+                [] { return pattern_json({rectangle_panel("front\\nv 0 0 0", 40, 60)}, ""); },
+                {"pattern.panels, panel 0", "'front\\x0av 0 0 0'", "control character \\x0a"});
+  pattern_error("pattern: empty panel name", "p.json",
+                [] { return pattern_json({rectangle_panel("", 40, 60)}, ""); },
+                {"pattern.panels, panel 0", "the name is empty"});
+  pattern_error("pattern: NUL in a panel name", "p.json",
+                [] { return pattern_json({rectangle_panel("fr\\u0000ont", 40, 60)}, ""); },
+                {"pattern.panels, panel 0", "'fr\\x00ont'", "control character \\x00"});
+  pattern_error("pattern: ESC in a panel name", "p.json",
+                [] { return pattern_json({rectangle_panel("\\u001b[2Jfront", 40, 60)}, ""); },
+                {"pattern.panels, panel 0", "'\\x1b[2Jfront'", "control character \\x1b"});
+  pattern_error("pattern: panel name ending in a space", "p.json",
+                [] {
+                  return pattern_json(
+                      {rectangle_panel("back", 40, 60), rectangle_panel("front ", 40, 60)}, "");
+                },
+                {"pattern.panels, panel 1", "begins or ends with a space"});
+  pattern_error("pattern: ESC in a curvature type (quoted in the message)", "p.json",
+                [] {
+                  std::string text = two_rectangles();
+                  text.replace(
+                      text.find("{\"endpoints\":[0,1]}"), 19,
+                      R"({"endpoints":[0,1],"curvature":{"type":"\u001b[2J","params":[]}})");
+                  return text;
+                },
+                {"panel 'front', edge 0", "unknown curvature type \"\\x1b[2J\""});
+
   // Bodies.
   body_error("body: empty file", [] { return std::string(); }, {"no vertices"});
   body_error("body: binary garbage (64 kB random bytes)", [] { return random_bytes(65536, 11); },
@@ -494,6 +526,8 @@ std::vector<Case> cases() {
              {"line 1", "not finite"});
   body_error("body: huge coordinate 1e999", [] { return "v 0 1e999 0\n" + cube_obj(1.0); },
              {"line 1", "1e999"});
+  body_error("body: ESC in a vertex coordinate (quoted in the message)",
+             [] { return "v 0 \x1b[2J 0\n" + cube_obj(1.0); }, {"line 1", "'\\x1b[2J'"});
   body_error("body: huge coordinates 1e150 (closed cube, volume overflows)",
              [] { return cube_obj(1e150); }, {"line ", "encloses no volume"});
   body_error("body: huge coordinates 1e300 (extent overflows)", [] { return cube_obj(1e300); },
@@ -670,6 +704,15 @@ Outcome run_isolated(const Case& c, const fs::path& path, double seconds, double
   return {reply[0] == 'E', reply.substr(end_of_line + 1)};
 }
 
+// Whether `message` is printable ASCII (the test's own check, independent of the engine's
+// escaping): no control character, no byte of a multi-byte or invalid sequence.
+bool printable_ascii(const std::string& message) {
+  return std::all_of(message.begin(), message.end(), [](char c) {
+    const auto byte = static_cast<unsigned char>(c);
+    return byte >= 0x20 && byte < 0x7f;
+  });
+}
+
 std::string escape_cell(std::string text, std::size_t limit) {
   std::string out;
   for (unsigned char c : text) {
@@ -777,6 +820,9 @@ class TortureTest : public QObject {
       for (const std::string& fragment : c.fragments)
         if (message.find(fragment) == std::string::npos)
           failure = "the message lacks \"" + fragment + "\": " + message;
+      if (message.rfind(path.string(), 0) == 0 &&
+          !printable_ascii(message.substr(path.string().size())))
+        failure = "the message echoes raw bytes of the input: " + message;
     }
     if (failure.empty() && seconds > time_bound)
       failure = "took " + std::to_string(seconds) + " s, over " + std::to_string(time_bound) + " s";
