@@ -22,7 +22,7 @@
 #include "engine/arrange/scene.h"
 #include "engine/arrange/session.h"
 #include "engine/body/body_mesh.h"
-#include "engine/core/atomic_file.h"
+#include "engine/core/input_file.h"
 #include "engine/io/parameters_json.h"
 #include "engine/pattern/pattern_files.h"
 #include "engine/quality/garment_metrics.h"

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "engine/body/body_mesh.h"
-#include "engine/core/atomic_file.h"
+#include "engine/core/input_file.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/pattern_files.h"
 #include "engine/quality/flat_placement.h"

@@ -25,6 +25,8 @@
 #include "engine/body/location_overrides.h"
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
+#include "engine/core/text.h"
 #include "engine/pattern/pattern_files.h"
 #include "output_plan.h"
 
@@ -312,8 +314,8 @@ int batch_command(const std::vector<std::string>& args) {
         it != index.end() && !line.has("--body")) {
       job.body = bodies / (it->second + ".obj");
       if (!std::filesystem::exists(job.body))
-        throw InputError(folder.string() + "/index.json: body '" + it->second + "' not found in " +
-                         bodies.string() + " (use --bodies DIR)");
+        throw InputError(folder.string() + "/index.json: body '" + printable(it->second) +
+                         "' not found in " + bodies.string() + " (use --bodies DIR)");
     }
     all.push_back(job);
     if (limit > 0 && static_cast<int>(all.size()) >= limit) break;

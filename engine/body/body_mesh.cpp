@@ -11,8 +11,8 @@
 #include <tuple>
 #include <vector>
 
-#include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 
 namespace garment {
 namespace {

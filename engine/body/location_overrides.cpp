@@ -6,8 +6,8 @@
 #include <cmath>
 #include <set>
 
-#include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 
 namespace garment {
 namespace {

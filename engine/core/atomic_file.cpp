@@ -16,8 +16,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include "engine/core/error.h"
-
 namespace garment {
 namespace {
 
@@ -163,19 +161,6 @@ void protect_input_file(const std::filesystem::path& path) {
   for (const std::filesystem::path& input : protected_files)
     if (input == path || std::filesystem::equivalent(path, input, error)) return;
   protected_files.push_back(path);
-}
-
-std::string read_file(const std::filesystem::path& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error))
-    throw_input_error(path.string(), "", "is a directory, not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw_input_error(path.string(), "", std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw_input_error(path.string(), "", "read error");
-  return buffer.str();
 }
 
 }  // namespace garment

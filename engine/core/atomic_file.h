@@ -20,9 +20,6 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& write);
 
-// Reads a whole file; throws InputError naming the path when it cannot be read.
-std::string read_file(const std::filesystem::path& path);
-
 // Marks a file the user opened as input (load_pattern marks the pattern): for the rest of the
 // process, write_file_atomically refuses to replace it (or another name of the same file), so that
 // no export, report or snapshot can overwrite the user's pattern.

@@ -13,7 +13,9 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// "<file>: <place>: <message>"; place may be empty.
+// "<file>: <place>: <message>"; place may be empty. Place and message quote the file's text (names,
+// values, lines): they are shown through printable(), so that control characters and invalid UTF-8
+// are escaped (\x1b) instead of reaching the terminal raw.
 [[noreturn]] void throw_input_error(const std::string& file, const std::string& place,
                                     const std::string& message);
 

@@ -12,6 +12,8 @@
 
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
+#include "engine/core/text.h"
 
 namespace garment {
 namespace {
@@ -168,9 +170,17 @@ std::string format_garment_obj(const Garment& garment, const Eigen::MatrixX3d& p
     vertex_count += garment.pieces[p].vertex_count;
     triangle_count += garment.pieces[p].triangle_count;
   }
+  // A name is a whole `g` line: a line break inside it would start a line of its own and shift
+  // every later vertex index. The pattern reader refuses such names; a garment built otherwise
+  // is refused here rather than written wrong.
+  for (int p : pieces)
+    if (const std::string fault = name_fault(garment.pieces[p].name); !fault.empty())
+      throw std::invalid_argument("format_garment_obj: piece " + std::to_string(p) + " '" +
+                                  printable(garment.pieces[p].name) + "': " + fault);
   std::string out;
   out.reserve(static_cast<std::size_t>(vertex_count) * 90);
-  out += "# garment-studio garment from " + garment.pattern.source + "\n";
+  // The source is a path, and a path may hold a line break.
+  out += "# garment-studio garment from " + printable(garment.pattern.source) + "\n";
   char units[32];
   std::snprintf(units, sizeof units, "%g", garment.pattern.units_in_meter);
   out += "# v: metres, y up, body facing +z. vt: the pattern file's panel coordinates (" +

@@ -12,8 +12,8 @@
 #include <string_view>
 #include <type_traits>
 
-#include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 
 namespace garment {
 namespace {

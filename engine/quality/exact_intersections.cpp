@@ -165,41 +165,41 @@ std::vector<Eigen::Vector2i> edge_triangle_contacts(const Eigen::MatrixX3d& posi
   for (Eigen::Index t = 0; t < triangles.rows(); ++t)
     triangle_boxes.push_back(
         box_of(positions, {triangles(t, 0), triangles(t, 1), triangles(t, 2)}));
-  std::vector<Eigen::Vector2i> candidates = overlapping_boxes(edge_boxes, triangle_boxes);
-  const auto adjacent = [&](const Eigen::Vector2i& pair) {
-    for (int end = 0; end < 2; ++end)
-      for (int corner = 0; corner < 3; ++corner)
-        if (vertex_class(edges(pair.x(), end)) == vertex_class(triangles(pair.y(), corner)))
-          return true;
-    return false;
-  };
-  candidates.erase(std::remove_if(candidates.begin(), candidates.end(), adjacent),
-                   candidates.end());
+  const BoxGrid grid(std::move(triangle_boxes), edge_boxes);
 
-  std::vector<char> contact(candidates.size(), 0);
+  // Each edge is queried on its own and stops at its kMaxContactsPerEdge-th contact, so that no
+  // list of all overlapping pairs is ever built: in a stack of coincident pieces that list grows
+  // with the square of the pieces.
+  std::vector<std::vector<Eigen::Vector2i>> per_edge(static_cast<std::size_t>(edges.rows()));
   tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, candidates.size(), 512),
-      [&](const tbb::blocked_range<std::size_t>& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-          const int e = candidates[i].x(), t = candidates[i].y();
+      tbb::blocked_range<Eigen::Index>(0, edges.rows(), 256),
+      [&](const tbb::blocked_range<Eigen::Index>& range) {
+        for (Eigen::Index row = range.begin(); row != range.end(); ++row) {
+          const int e = static_cast<int>(row);
           const Eigen::Vector3d p = positions.row(edges(e, 0)), q = positions.row(edges(e, 1));
-          const Eigen::Vector3d a = positions.row(triangles(t, 0)),
-                                b = positions.row(triangles(t, 1)),
-                                c = positions.row(triangles(t, 2));
-          if (clearly_apart(p, q, a, b, c)) continue;
-          contact[i] =
-              touches(point_of(positions, edges(e, 0)), point_of(positions, edges(e, 1)),
-                      point_of(positions, triangles(t, 0)), point_of(positions, triangles(t, 1)),
-                      point_of(positions, triangles(t, 2)));
+          std::vector<Eigen::Vector2i>& found = per_edge[static_cast<std::size_t>(e)];
+          grid.for_each_overlap(edge_boxes[static_cast<std::size_t>(e)], [&](int t) {
+            for (int end = 0; end < 2; ++end)
+              for (int corner = 0; corner < 3; ++corner)
+                if (vertex_class(edges(e, end)) == vertex_class(triangles(t, corner))) return true;
+            const Eigen::Vector3d a = positions.row(triangles(t, 0)),
+                                  b = positions.row(triangles(t, 1)),
+                                  c = positions.row(triangles(t, 2));
+            if (clearly_apart(p, q, a, b, c)) return true;
+            if (touches(point_of(positions, edges(e, 0)), point_of(positions, edges(e, 1)),
+                        point_of(positions, triangles(t, 0)), point_of(positions, triangles(t, 1)),
+                        point_of(positions, triangles(t, 2))))
+              found.emplace_back(e, t);
+            return found.size() < static_cast<std::size_t>(kMaxContactsPerEdge);
+          });
+          std::sort(
+              found.begin(), found.end(),
+              [](const Eigen::Vector2i& x, const Eigen::Vector2i& y) { return x.y() < y.y(); });
         }
       });
   std::vector<Eigen::Vector2i> contacts;
-  for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (contact[i]) contacts.push_back(candidates[i]);
-  std::sort(contacts.begin(), contacts.end(),
-            [](const Eigen::Vector2i& x, const Eigen::Vector2i& y) {
-              return x.x() != y.x() ? x.x() < y.x() : x.y() < y.y();
-            });
+  for (const std::vector<Eigen::Vector2i>& found : per_edge)
+    contacts.insert(contacts.end(), found.begin(), found.end());
   return contacts;
 }
 

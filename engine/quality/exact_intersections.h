@@ -37,11 +37,18 @@ class BodySurfaceQueries {
   std::unique_ptr<Impl> impl_;
 };
 
+// A real garment's edge touches a few triangles where it passes through a layer or two; an edge
+// in a stack of coincident pieces (a pattern without translations, its pieces never arranged)
+// touches one in every piece of the stack. Only the first this many contacts of an edge are kept,
+// which keeps the test linear in the size of the garment: without the cap, 2,000 coincident 1 cm
+// squares took 89 s and 1.5 GB, 20,000 more than 12 GB.
+constexpr int kMaxContactsPerEdge = 16;
+
 // Contacts between cloth edges and cloth triangles: the (edge row, triangle row) pairs where the
 // closed segment touches the closed triangle, skipping every triangle that shares a vertex class
 // with the edge (vertex_class #V: welded vertex ids, so that triangles meeting at a seam count as
-// adjacent). edges #E×2 and triangles #T×3 index `positions` (#V×3). Sorted by edge, then
-// triangle.
+// adjacent), at most kMaxContactsPerEdge per edge (the first found in a fixed order). edges #E×2
+// and triangles #T×3 index `positions` (#V×3). Sorted by edge, then triangle.
 std::vector<Eigen::Vector2i> edge_triangle_contacts(const Eigen::MatrixX3d& positions,
                                                     const Eigen::MatrixX2i& edges,
                                                     const Eigen::MatrixX3i& triangles,

@@ -10,7 +10,8 @@
 //                         distance to the surface
 //   body_crossing_edges   edges of E touching or crossing the body surface (exact)
 //   self_crossing_edges   edges of E touching a cloth triangle that shares no welded vertex with
-//                         them (exact), with the pairs of pieces involved
+//                         them (exact), with the pairs of pieces involved (an edge touching more
+//                         than kMaxContactsPerEdge triangles counts for the pieces of the first)
 //   folds                 neighbour triangles inside a piece whose normals have dot < -0.5
 //   theta_in / theta_out  smallest normal dot of neighbour triangles inside pieces / of triangle
 //                         pairs that become neighbours by sewing with consistent winding (Eq. 13)

@@ -6,6 +6,7 @@
 
 #include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "engine/seeding/seed_class.h"
 
 namespace garment {

@@ -246,6 +246,51 @@ class GarmentObjTest : public QObject {
     expect_error("", garment, {"no group for the panels " + garment.pieces[0].name});
   }
 
+  // A group name with control characters is quoted escaped: the terminal shows \x1b, it does not
+  // obey it.
+  void control_characters_in_a_group_name_are_escaped() {
+    const Garment garment = test_garment("gc_0007_specification.json");
+    std::vector<std::string> lines = lines_of(format_garment_obj(garment, flat_placement(garment)));
+    const auto group = std::find_if(lines.begin(), lines.end(), [](const std::string& line) {
+      return line.rfind("g ", 0) == 0;
+    });
+    *group = "g \x1b[2Jcollar\x07";
+    try {
+      parse_garment_obj(join(lines), "test.obj", garment);
+      QFAIL("no error");
+    } catch (const InputError& error) {
+      const std::string message = error.what();
+      QVERIFY2(message.find("group '\\x1b[2Jcollar\\x07' is not a panel") != std::string::npos,
+               message.c_str());
+      QVERIFY2(message.find('\x1b') == std::string::npos, "a raw ESC in the message");
+      QVERIFY2(message.find('\x07') == std::string::npos, "a raw BEL in the message");
+    }
+  }
+
+  // The pattern reader refuses names that cannot stand on a `g` line; a garment whose names were
+  // set otherwise is refused by the writer instead of being written with its indices shifted.
+  void name_that_would_break_its_g_line_is_not_written_data() {
+    QTest::addColumn<QByteArray>("name");
+    QTest::newRow("newline") << QByteArray("front\nv 0 0 0");
+    QTest::newRow("carriage return") << QByteArray("front\r");
+    QTest::newRow("empty") << QByteArray();
+    QTest::newRow("NUL") << QByteArray("fr\0ont", 6);
+    QTest::newRow("ESC") << QByteArray("\x1b[2Jfront");
+    QTest::newRow("leading space") << QByteArray(" front");
+    QTest::newRow("invalid UTF-8") << QByteArray("fr\xffont");
+  }
+  void name_that_would_break_its_g_line_is_not_written() {
+    QFETCH(QByteArray, name);
+    Garment garment = test_garment("gc_0007_specification.json");
+    garment.pieces[1].name = name.toStdString();
+    try {
+      format_garment_obj(garment, flat_placement(garment));
+      QFAIL("written");
+    } catch (const std::invalid_argument& error) {
+      QVERIFY2(std::string(error.what()).find("piece 1 '") != std::string::npos, error.what());
+    }
+  }
+
   void unreadable_file_is_an_input_error() {
     const Garment garment = test_garment("gc_0000_specification.json");
     QVERIFY_THROWS_EXCEPTION(InputError, read_garment_obj("/nonexistent/garment.obj", garment));

@@ -13,6 +13,7 @@
 
 #include "engine/body/body_mesh.h"
 #include "engine/core/atomic_file.h"
+#include "engine/core/input_file.h"
 #include "engine/core/mesh_geometry.h"
 #include "engine/io/garment_obj.h"
 #include "engine/pattern/garment_mesh.h"

@@ -7,13 +7,24 @@
 // Patterns go through load_pattern + build_garment with the default MeshingOptions (20 mm, budget
 // 400,000 vertices); bodies through load_body_obj. With GARMENT_ROBUSTNESS_TABLE=<file> the test
 // writes the outcome of every case as the markdown table of docs/robustness.md.
+// Every error message must be printable ASCII after the file's path: text quoted from the input
+// (names, values, lines) is escaped (\x1b), never echoed raw to the terminal.
+// Hostile paths (a FIFO, /dev/zero, a file over the input size limit) run in a child process that
+// a timer kills and whose address space is capped, so that a reader that blocks or never ends
+// fails its row instead of hanging the suite or exhausting the machine.
 
 #include <QtTest>
+
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <Eigen/Geometry>
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -44,16 +55,21 @@ constexpr double kCaseSeconds = 30.0;
 constexpr double kCaseMegabytes = 1024.0;
 
 #if defined(__SANITIZE_ADDRESS__)
-constexpr double kMemoryScale = 4.0;
+constexpr bool kAddressSanitizer = true;
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
-constexpr double kMemoryScale = 4.0;
+constexpr bool kAddressSanitizer = true;
 #else
-constexpr double kMemoryScale = 1.0;
+constexpr bool kAddressSanitizer = false;
 #endif
 #else
-constexpr double kMemoryScale = 1.0;
+constexpr bool kAddressSanitizer = false;
 #endif
+constexpr double kMemoryScale = kAddressSanitizer ? 4.0 : 1.0;
+// The address space of a child running a hostile path: far above what a refusal needs, far below
+// what reading /dev/zero without a cap would take from the machine. (AddressSanitizer reserves
+// terabytes of address space up front: no cap there.)
+constexpr rlim_t kChildAddressSpace = rlim_t{4} << 30;
 
 // Peak resident set since the last reset_peak_memory(), in MiB (Linux: VmHWM, reset through
 // /proc/self/clear_refs).
@@ -208,6 +224,13 @@ struct Case {
   bool budget_error = false;  // the error must be a BudgetError
 };
 
+// A case whose input is not written from `content` but made in the case's folder (a FIFO, a
+// sparse file) or named (/dev/zero) by `make`, which returns its path. It runs in a child process.
+struct HostileCase {
+  Case expected;
+  std::function<fs::path(const fs::path& dir)> make;
+};
+
 struct Row {
   std::string name, kind, input, outcome, message;
   double seconds = 0.0, megabytes = 0.0;
@@ -320,25 +343,25 @@ std::vector<Case> cases() {
                   return text;
                 },
                 {"line 1, column", "nested deeper than 64"});
-  all.push_back({"pattern: 20,000 panels of 20×30 cm (over the vertex budget)",
+  all.push_back({"pattern: 4,000 panels of 20×30 cm (over the vertex budget)",
                  Kind::Pattern,
                  "p.json",
                  [] {
                    std::vector<std::string> panels;
-                   for (int i = 0; i < 20000; ++i)
+                   for (int i = 0; i < 4000; ++i)
                      panels.push_back(rectangle_panel("panel_" + std::to_string(i), 20, 30));
                    return pattern_json(panels, "");
                  },
                  {"vertices, over the budget of 400000"},
                  nullptr,
                  true});
-  all.push_back({"pattern: 20,000 panels of 3×3 cm, 10,000 stitches",
+  all.push_back({"pattern: 5,000 panels of 3×3 cm (the panel budget), 2,500 stitches",
                  Kind::Pattern,
                  "p.json",
                  [] {
                    std::vector<std::string> panels;
                    std::string stitches;
-                   for (int i = 0; i < 20000; ++i) {
+                   for (int i = 0; i < 5000; ++i) {
                      panels.push_back(rectangle_panel("panel_" + std::to_string(i), 3, 3));
                      if (i % 2)
                        stitches += std::string(i > 1 ? "," : "") + "[{\"panel\":\"panel_" +
@@ -349,10 +372,37 @@ std::vector<Case> cases() {
                  },
                  {},
                  [](const Outcome& outcome) {
-                   return outcome.message.find("20000 pieces") != std::string::npos
+                   return outcome.message.find("5000 pieces") != std::string::npos
                               ? std::string()
-                              : "expected 20000 pieces: " + outcome.message;
+                              : "expected 5000 pieces: " + outcome.message;
                  }});
+  all.push_back({"pattern: 20,000 unconnected 1 cm squares (over the panel budget)",
+                 Kind::Pattern,
+                 "p.json",
+                 [] {
+                   std::vector<std::string> panels;
+                   for (int i = 0; i < 20000; ++i)
+                     panels.push_back(rectangle_panel("square_" + std::to_string(i), 1, 1));
+                   return pattern_json(panels, "");
+                 },
+                 {"the pattern has 20000 panels, over the budget of 5000"},
+                 nullptr,
+                 true});
+  all.push_back({"pattern: 20,001 stitches (darts of one 40,002-gon, over the stitch budget)",
+                 Kind::Pattern,
+                 "p.json",
+                 [] {
+                   std::string stitches;
+                   for (int i = 0; i < 20001; ++i)
+                     stitches += std::string(i ? "," : "") +
+                                 "[{\"panel\":\"disc\",\"edge\":" + std::to_string(2 * i) +
+                                 "},{\"panel\":\"disc\",\"edge\":" + std::to_string(2 * i + 1) +
+                                 "}]";
+                   return pattern_json({polygon_panel("disc", 40002, 100.0)}, stitches);
+                 },
+                 {"the pattern has 20001 stitches, over the budget of 20000"},
+                 nullptr,
+                 true});
   all.push_back({"pattern: 10^6-vertex outline (circle of radius 1 m)",
                  Kind::Pattern,
                  "p.json",
@@ -409,6 +459,36 @@ std::vector<Case> cases() {
   pattern_error("pattern: file is missing", "", nullptr, {"cannot open"});
   pattern_error("pattern: path is a directory", ".", nullptr, {"is a directory"});
 
+  // Names are data: one that an export cannot write as it is is refused at import, with the
+  // panel's place (the panel index in the pattern's order) and the name escaped.
+  pattern_error("pattern: newline in a panel name", "p.json",
+                [] { return pattern_json({rectangle_panel("front\\nv 0 0 0", 40, 60)}, ""); },
+                {"pattern.panels, panel 0", "'front\\x0av 0 0 0'", "control character \\x0a"});
+  pattern_error("pattern: empty panel name", "p.json",
+                [] { return pattern_json({rectangle_panel("", 40, 60)}, ""); },
+                {"pattern.panels, panel 0", "the name is empty"});
+  pattern_error("pattern: NUL in a panel name", "p.json",
+                [] { return pattern_json({rectangle_panel("fr\\u0000ont", 40, 60)}, ""); },
+                {"pattern.panels, panel 0", "'fr\\x00ont'", "control character \\x00"});
+  pattern_error("pattern: ESC in a panel name", "p.json",
+                [] { return pattern_json({rectangle_panel("\\u001b[2Jfront", 40, 60)}, ""); },
+                {"pattern.panels, panel 0", "'\\x1b[2Jfront'", "control character \\x1b"});
+  pattern_error("pattern: panel name ending in a space", "p.json",
+                [] {
+                  return pattern_json(
+                      {rectangle_panel("back", 40, 60), rectangle_panel("front ", 40, 60)}, "");
+                },
+                {"pattern.panels, panel 1", "begins or ends with a space"});
+  pattern_error("pattern: ESC in a curvature type (quoted in the message)", "p.json",
+                [] {
+                  std::string text = two_rectangles();
+                  text.replace(
+                      text.find("{\"endpoints\":[0,1]}"), 19,
+                      R"({"endpoints":[0,1],"curvature":{"type":"\u001b[2J","params":[]}})");
+                  return text;
+                },
+                {"panel 'front', edge 0", "unknown curvature type \"\\x1b[2J\""});
+
   // Bodies.
   body_error("body: empty file", [] { return std::string(); }, {"no vertices"});
   body_error("body: binary garbage (64 kB random bytes)", [] { return random_bytes(65536, 11); },
@@ -446,6 +526,8 @@ std::vector<Case> cases() {
              {"line 1", "not finite"});
   body_error("body: huge coordinate 1e999", [] { return "v 0 1e999 0\n" + cube_obj(1.0); },
              {"line 1", "1e999"});
+  body_error("body: ESC in a vertex coordinate (quoted in the message)",
+             [] { return "v 0 \x1b[2J 0\n" + cube_obj(1.0); }, {"line 1", "'\\x1b[2J'"});
   body_error("body: huge coordinates 1e150 (closed cube, volume overflows)",
              [] { return cube_obj(1e150); }, {"line ", "encloses no volume"});
   body_error("body: huge coordinates 1e300 (extent overflows)", [] { return cube_obj(1e300); },
@@ -509,6 +591,43 @@ std::vector<Case> cases() {
   return all;
 }
 
+// Hostile paths: only regular files are read, and at most 256 MiB of them.
+std::vector<HostileCase> hostile_cases() {
+  std::vector<HostileCase> all;
+  const auto hostile = [&](std::string name, Kind kind,
+                           std::function<fs::path(const fs::path&)> make,
+                           std::vector<std::string> fragments, bool budget_error) {
+    all.push_back(
+        {{std::move(name), kind, "", nullptr, std::move(fragments), nullptr, budget_error},
+         std::move(make)});
+  };
+  const auto fifo = [](const fs::path& dir) {
+    const fs::path path = dir / "fifo.json";
+    ::mkfifo(path.c_str(), 0600);
+    return path;
+  };
+  hostile(
+      "pattern: /dev/zero", Kind::Pattern, [](const fs::path&) { return fs::path("/dev/zero"); },
+      {"is a character device, not a regular file"}, false);
+  hostile("pattern: a FIFO nobody writes to", Kind::Pattern, fifo,
+          {"is a pipe (FIFO), not a regular file"}, false);
+  hostile(
+      "pattern: 256 MiB + 1 byte (sparse file of zeros)", Kind::Pattern,
+      [](const fs::path& dir) {
+        const fs::path path = dir / "p.json";
+        std::ofstream(path).close();
+        fs::resize_file(path, (std::uintmax_t{256} << 20) + 1);
+        return path;
+      },
+      {"the file is larger than 256 MiB"}, true);
+  hostile(
+      "body: /dev/zero", Kind::Body, [](const fs::path&) { return fs::path("/dev/zero"); },
+      {"is a character device, not a regular file"}, false);
+  hostile("body: a FIFO nobody writes to", Kind::Body, fifo,
+          {"is a pipe (FIFO), not a regular file"}, false);
+  return all;
+}
+
 Outcome run(const Case& c, const fs::path& path) {
   Outcome outcome;
   try {
@@ -542,6 +661,58 @@ Outcome run(const Case& c, const fs::path& path) {
   return outcome;
 }
 
+// Runs the case in a child process killed after `seconds` (SIGALRM) and limited to
+// kChildAddressSpace, and returns its outcome; `megabytes` receives the child's peak resident set.
+Outcome run_isolated(const Case& c, const fs::path& path, double seconds, double& megabytes) {
+  int channel[2];
+  if (::pipe(channel) != 0) return {true, "pipe failed"};
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::close(channel[0]);
+    ::alarm(static_cast<unsigned>(std::ceil(seconds)));
+    if (!kAddressSanitizer) {
+      const rlimit limit{kChildAddressSpace, kChildAddressSpace};
+      ::setrlimit(RLIMIT_AS, &limit);
+    }
+    reset_peak_memory();
+    const Outcome outcome = run(c, path);
+    const std::string reply = std::string(outcome.error ? "E " : "R ") +
+                              std::to_string(peak_memory_mb()) + "\n" + outcome.message;
+    for (std::size_t sent = 0; sent < reply.size();) {
+      const ssize_t count = ::write(channel[1], reply.data() + sent, reply.size() - sent);
+      if (count <= 0) break;
+      sent += static_cast<std::size_t>(count);
+    }
+    ::_exit(0);
+  }
+  ::close(channel[1]);
+  std::string reply;
+  char buffer[4096];
+  for (ssize_t count; (count = ::read(channel[0], buffer, sizeof buffer)) > 0;)
+    reply.append(buffer, static_cast<std::size_t>(count));
+  ::close(channel[0]);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  if (!WIFEXITED(status) || reply.size() < 2)
+    return {true,
+            "the child process died" +
+                (WIFSIGNALED(status) ? " of signal " + std::to_string(WTERMSIG(status)) +
+                                           (WTERMSIG(status) == SIGALRM ? " (time bound)" : "")
+                                     : std::string())};
+  const std::size_t end_of_line = reply.find('\n');
+  megabytes = std::atof(reply.c_str() + 2);
+  return {reply[0] == 'E', reply.substr(end_of_line + 1)};
+}
+
+// Whether `message` is printable ASCII (the test's own check, independent of the engine's
+// escaping): no control character, no byte of a multi-byte or invalid sequence.
+bool printable_ascii(const std::string& message) {
+  return std::all_of(message.begin(), message.end(), [](char c) {
+    const auto byte = static_cast<unsigned char>(c);
+    return byte >= 0x20 && byte < 0x7f;
+  });
+}
+
 std::string escape_cell(std::string text, std::size_t limit) {
   std::string out;
   for (unsigned char c : text) {
@@ -570,34 +741,54 @@ class TortureTest : public QObject {
     const auto all = cases();
     for (std::size_t i = 0; i < all.size(); ++i)
       QTest::newRow(all[i].name.c_str()) << static_cast<int>(i);
+    const auto hostile = hostile_cases();
+    for (std::size_t i = 0; i < hostile.size(); ++i)
+      QTest::newRow(hostile[i].expected.name.c_str()) << static_cast<int>(all.size() + i);
   }
 
   void torture() {
     QFETCH(int, index);
-    const Case c = cases()[static_cast<std::size_t>(index)];
+    const std::vector<Case> all = cases();
+    const auto position = static_cast<std::size_t>(index);
+    const bool hostile = position >= all.size();
+    const HostileCase hostile_case =
+        hostile ? hostile_cases()[position - all.size()] : HostileCase{all[position], nullptr};
+    const Case& c = hostile_case.expected;
     const fs::path dir = fs::path(folder_.path().toStdString()) / ("case_" + std::to_string(index));
     fs::create_directories(dir);
-    const fs::path path = c.file_name.empty()  ? dir / "missing.json"
-                          : c.file_name == "." ? dir
-                                               : dir / c.file_name;
+    fs::path path = c.file_name.empty()  ? dir / "missing.json"
+                    : c.file_name == "." ? dir
+                                         : dir / c.file_name;
     std::size_t size = 0;
     if (c.content) {
       const std::string bytes = c.content();
       size = bytes.size();
       write_bytes(path, bytes);
     }
+    if (hostile) {
+      path = hostile_case.make(dir);
+      std::error_code error;
+      if (fs::is_regular_file(path, error)) size = fs::file_size(path, error);
+    }
+    const double time_bound = kCaseSeconds * test::time_scale();
 
-    reset_peak_memory();
+    double megabytes = 0.0;
     const auto start = std::chrono::steady_clock::now();
-    const Outcome outcome = run(c, path);
+    Outcome outcome;
+    if (hostile) {
+      outcome = run_isolated(c, path, time_bound, megabytes);
+    } else {
+      reset_peak_memory();
+      outcome = run(c, path);
+      megabytes = peak_memory_mb();
+    }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double megabytes = peak_memory_mb();
 
     Row row;
     row.name = c.name;
     row.kind = c.kind == Kind::Pattern ? "pattern" : "body";
-    row.input = c.content ? human_size(size) : "—";
+    row.input = c.content || size > 0 ? human_size(size) : "—";
     row.outcome = outcome.error
                       ? (outcome.message.rfind("[budget]", 0) == 0 ? "refused (budget)" : "error")
                       : "result";
@@ -629,8 +820,10 @@ class TortureTest : public QObject {
       for (const std::string& fragment : c.fragments)
         if (message.find(fragment) == std::string::npos)
           failure = "the message lacks \"" + fragment + "\": " + message;
+      if (message.rfind(path.string(), 0) == 0 &&
+          !printable_ascii(message.substr(path.string().size())))
+        failure = "the message echoes raw bytes of the input: " + message;
     }
-    const double time_bound = kCaseSeconds * test::time_scale();
     if (failure.empty() && seconds > time_bound)
       failure = "took " + std::to_string(seconds) + " s, over " + std::to_string(time_bound) + " s";
     const double memory_bound = kCaseMegabytes * kMemoryScale;

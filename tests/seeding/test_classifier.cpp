@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/core/atomic_file.h"
 #include "engine/core/error.h"
+#include "engine/core/input_file.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/pattern.h"
 #include "engine/pattern/pattern_files.h"

@@ -10,7 +10,7 @@
 #include <map>
 #include <random>
 
-#include "engine/core/atomic_file.h"
+#include "engine/core/input_file.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/seeding/piece_classifier.h"
 #include "engine/seeding/seed_graph.h"
