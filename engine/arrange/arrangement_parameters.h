@@ -75,12 +75,13 @@ struct ArrangementParameters {
   // Revisits stop once the session has done this much work (free vertices × solver iterations,
   // summed over its solves: SolveReport::work): the batches left are arranged once each and the
   // garment goes to the post-process. A budget of work, not of seconds, so that the same input
-  // gives the same garment on an idle or a busy machine. It was 10 s of the session's solve time:
-  // on the 500 GarmentCode patterns the slowest garment that ends clean spent 6.1 s, and the 22
-  // that spent over 9 s all failed with or without their late revisits. One thread does 1.4 to
-  // 3.0 million vertex-iterations a second (CPU time of gc_0012, 0008 and 0440, tuning half): 20
-  // million is those 10 s at 2 million a second.
-  double revisit_work = 20e6;
+  // gives the same garment on an idle or a busy machine (it was 10 s of the session's solve time).
+  // Tuned on the even half of the 500 GarmentCode patterns: of its 37 garments past 18 million,
+  // 16 are clean at 20 million, 19 with no budget; 30 million keeps gc_0008 (24.2 million in all)
+  // and gc_0218 (25.2), while gc_0050 needs 50.6 million (15.6 s). A thread does 1.2 to 4.8
+  // million vertex-iterations a second (those garments on an idle machine), so the budget lies
+  // between 6 and 25 s of one thread.
+  double revisit_work = 30e6;
 
   // §5.2 seed shape solve.
   int seed_iterations = 400;
@@ -185,11 +186,9 @@ struct ArrangementParameters {
   // No untangling pass starts once the session has done this much work (as revisit_work): passes
   // over a large garment are slow, and a garment may take 30 s in all. gc_0135 (21,303 vertices)
   // entered them at 18.6 s, still tangled after the 300 iterations, and spent 9.4 s on 32 passes
-  // that left its 101 crossing edges as they were (28.1 s end to end). Of the 26 of the 500
-  // GarmentCode patterns that untangling frees, the slowest (gc_0133) ended its whole session at
-  // 14.7 s. It was 20 s of the session's solve time; as revisit_work, 2 million vertex-iterations
-  // stand for a second.
-  double post_process_untangle_work = 40e6;
+  // that left its 101 crossing edges as they were (28.1 s end to end). It was 20 s of the
+  // session's solve time, twice the revisits' 10 s: so it is twice revisit_work.
+  double post_process_untangle_work = 60e6;
   double post_process_untangle_step = 0.002;
   int post_process_untangle_iterations = 3;
   int post_process_untangle_patience = 10;
