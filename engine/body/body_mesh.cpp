@@ -205,7 +205,8 @@ void check_vertex_fans(const BodyMesh& mesh,
                        const std::function<std::string(int)>& place) {
   const int triangle_count = static_cast<int>(mesh.triangles.rows());
   const int vertex_count = static_cast<int>(mesh.vertices.rows());
-  std::vector<int> first(vertex_count + 1, 0);  // the faces of vertex v: faces[first[v], first[v+1])
+  std::vector<int> first(vertex_count + 1,
+                         0);  // the faces of vertex v: faces[first[v], first[v+1])
   for (int t = 0; t < triangle_count; ++t)
     for (int k = 0; k < 3; ++k)
       ++first[mesh.triangles(t, k) + 1];
