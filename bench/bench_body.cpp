@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench_load.h"
 #include "engine/body/body_mesh.h"
 #include "engine/body/body_surface.h"
 #include "engine/body/exact_body_distance.h"
@@ -245,9 +246,6 @@ int main(int argc, char** argv) {
     }
   }
   std::filesystem::remove_all(cache);
-  double load[3];
-  if (getloadavg(load, 3) == 3)
-    std::printf("(load average %.1f on %u cores while measuring: wall times include waiting)\n",
-                load[0], std::thread::hardware_concurrency());
+  garment::bench::print_load_average();
   return 0;
 }

@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_load.h"
 #include "engine/body/body_mesh.h"
 #include "engine/body/distance_grid_cache.h"
 #include "engine/body/signed_distance_field.h"
@@ -104,9 +105,6 @@ int main(int argc, char** argv) {
         all_hits ? "" : " CACHE MISSED");
   }
   std::filesystem::remove_all(cache);
-  double load[3];
-  if (getloadavg(load, 3) == 3)
-    std::printf("(load average %.1f on %u cores while measuring: wall times include waiting)\n",
-                load[0], std::thread::hardware_concurrency());
+  garment::bench::print_load_average();
   return 0;
 }
