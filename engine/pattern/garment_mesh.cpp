@@ -266,16 +266,19 @@ std::vector<double> piece_rest_areas(const Garment& garment) {
 }
 
 Eigen::VectorXi welded_vertices(const Garment& garment) {
-  Eigen::VectorXi parent = Eigen::VectorXi::LinSpaced(garment.vertex_count(), 0, garment.vertex_count() - 1);
+  Eigen::VectorXi parent =
+      Eigen::VectorXi::LinSpaced(garment.vertex_count(), 0, garment.vertex_count() - 1);
   const auto find = [&](int v) {
-    while (parent(v) != v) v = parent(v) = parent(parent(v));
+    while (parent(v) != v)
+      v = parent(v) = parent(parent(v));
     return v;
   };
   for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
     const int a = find(garment.sewing_pairs(k, 0)), b = find(garment.sewing_pairs(k, 1));
     if (a != b) parent(std::max(a, b)) = std::min(a, b);
   }
-  for (int v = 0; v < garment.vertex_count(); ++v) parent(v) = find(v);
+  for (int v = 0; v < garment.vertex_count(); ++v)
+    parent(v) = find(v);
   return parent;
 }
 
