@@ -94,8 +94,8 @@ struct ArrangementParameters {
   int post_process_iterations = 300;
   // Then, while the garment narrowly fails the verdict on strain or an open seam
   // (post_process.cpp), up to this many more, in rounds of 100 that stop once it passes them, and
-  // not past revisit_work of the session (the work bound): most garments settle clean within the
-  // first 300, and only the near misses pay for the longer settle.
+  // not past post_process_work of the session (the work bound): most garments settle clean within
+  // the first 300, and only the near misses pay for the longer settle.
   int post_process_extra_iterations = 600;
   double post_process_step = 0.004;
   // "Strong sewing" and "greater repulsion strength" (§4), measured on 19 GarmentCode patterns
@@ -125,7 +125,7 @@ struct ArrangementParameters {
   double post_process_bending_factor = 5.0;
   // A garment that still has folds at the end (a crease of neighbour triangles facing apart, as
   // the verdict counts them) settles this many iterations more with bending this many times
-  // energy.bending_stiffness, then is untangled again, within revisit_work (0 iterations:
+  // energy.bending_stiffness, then is untangled again, within post_process_work (0 iterations:
   // off). Only garments that would fail on folds take it, so no clean garment changes; stiffer
   // bending throughout holds seams open (see post_process_bending_factor). Of the 500
   // GarmentCode patterns: 401 -> 408 clean (gc_0008, 0098, 0101, 0117, 0387, 0476, 0485), none
@@ -183,12 +183,15 @@ struct ArrangementParameters {
   // the 202 of the 500 GarmentCode patterns that ended with crossings: 15 solver iterations per
   // pass undid each pass (gc_0072: 9 contacts, 13 after 40 passes), 3 let 40 garments come apart.
   int post_process_untangle_passes = 40;
-  // No untangling pass starts once the session has done this much work (as revisit_work): passes
-  // over a large garment are slow, and a garment may take 30 s in all. gc_0135 (21,303 vertices)
-  // entered them at 18.6 s, still tangled after the 300 iterations, and spent 9.4 s on 32 passes
-  // that left its 101 crossing edges as they were (28.1 s end to end). It was 20 s of the
-  // session's solve time, twice the revisits' 10 s: so it is twice revisit_work.
-  double post_process_untangle_work = 60e6;
+  // No round of the post-process past its first settle (the longer settle, untangling passes, the
+  // round of stiffer bending) starts once the session has done this much work (as revisit_work):
+  // passes over a large garment are slow, and a garment may take 30 s in all. gc_0135 (21,303
+  // vertices) entered them at 18.6 s, still tangled after the 300 iterations, and spent 9.4 s on 32
+  // passes that left its 101 crossing edges as they were (28.1 s end to end). It was 20 s of the
+  // session's solve time, twice the revisits' 10 s: so it is twice revisit_work. The rounds have a
+  // budget of their own, not revisit_work, so that revisits cannot starve them: gc_0117 (odd half)
+  // ended its revisits at 32.7 million and kept a fold its round of stiffer bending removes.
+  double post_process_work = 60e6;
   double post_process_untangle_step = 0.002;
   int post_process_untangle_iterations = 3;
   int post_process_untangle_patience = 10;

@@ -30,7 +30,7 @@ constexpr int kUntangleRegionRings = 8;
 // the layering only orders batches) are pulled apart along their intersection contours
 // (untangle.h), a few solver iterations after each pass letting the cloth around them follow. The
 // passes stop once no contact is left, when the count has not improved for a while, or once the
-// session has done post_process_untangle_work (session_work: its work so far); a garment
+// session has done post_process_work (session_work: its work so far); a garment
 // still tangled then gets back its positions from before the passes, which moved crossing
 // vertices only and would leave it worse elsewhere (folds, open seams) for nothing.
 void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vector<bool>& arranged,
@@ -98,7 +98,7 @@ void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vec
   for (int pass = 0, since_fewest = 0;
        pass < parameters.post_process_untangle_passes && !contacts.empty() &&
        since_fewest < parameters.post_process_untangle_patience &&
-       session_work() < parameters.post_process_untangle_work;
+       session_work() < parameters.post_process_work;
        ++pass) {
     const Eigen::MatrixX3d displacement =
         contour_minimizing_displacement(positions, garment.triangles, mesh, vertex_piece, contacts,
@@ -287,11 +287,11 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   result.work = solved.work;
   result.final_energy = solved.final_energy;
   // Settling on while the garment narrowly fails the verdict on strain or an open seam, in rounds
-  // that stop as soon as it passes them, and only within the session's revisit work.
+  // that stop as soon as it passes them, and only within the session's post-process work.
   const auto work_so_far = [&] { return report.work + result.work; };
   for (int extra = parameters.post_process_extra_iterations;
        extra > 0 && solved.reason != StopReason::Cancelled &&
-       work_so_far() < parameters.revisit_work &&
+       work_so_far() < parameters.post_process_work &&
        narrowly_stretched_or_open(garment, mesh.edges, arranged, positions);
        extra -= kExtraRound) {
     quasi_newton.max_iterations = std::min(extra, kExtraRound);
@@ -311,7 +311,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   // A creased garment would fail the verdict anyway: stiffer bending smooths its creases, and the
   // cloth it moves may come to cross, so it is untangled again.
   if (parameters.post_process_fold_iterations > 0 && solved.reason != StopReason::Cancelled &&
-      work_so_far() < parameters.revisit_work && has_folds(garment, mesh, positions)) {
+      work_so_far() < parameters.post_process_work && has_folds(garment, mesh, positions)) {
     context.bending->set_stiffness(energy.bending_stiffness *
                                    parameters.post_process_fold_bending_factor);
     quasi_newton.max_iterations = parameters.post_process_fold_iterations;

@@ -96,7 +96,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_strain_limit", p.post_process_strain_limit);
   visit("post_process_strain_limit_factor", p.post_process_strain_limit_factor);
   visit("post_process_untangle_passes", p.post_process_untangle_passes);
-  visit("post_process_untangle_work", p.post_process_untangle_work);
+  visit("post_process_work", p.post_process_work);
   visit("post_process_untangle_step", p.post_process_untangle_step);
   visit("post_process_untangle_iterations", p.post_process_untangle_iterations);
   visit("post_process_untangle_patience", p.post_process_untangle_patience);
@@ -247,7 +247,7 @@ const std::map<std::string_view, Range>& parameter_ranges() {
       {"post_process_strain_limit", at_least(0, 10, "0.13: 13 %")},
       {"post_process_strain_limit_factor", at_least(1, kFactor, "1: off")},
       {"post_process_untangle_passes", at_least(0, kIterations, "passes; 0: off")},
-      {"post_process_untangle_work", at_least(0, 1e18, "vertex-iterations")},
+      {"post_process_work", at_least(0, 1e18, "vertex-iterations")},
       {"post_process_untangle_step", above(0, 0.1, "m")},
       {"post_process_untangle_iterations", at_least(0, kIterations, "iterations")},
       {"post_process_untangle_patience", at_least(0, kIterations, "passes")},

@@ -204,7 +204,7 @@ class PostProcessTest : public QObject {
     // Past the untangling work bound no pass starts: the garment stays as the settle left it.
     QVERIFY(untangled.untangle_passes > 0);
     parameters.post_process_untangle_passes = ArrangementParameters().post_process_untangle_passes;
-    parameters.post_process_untangle_work = 0.0;
+    parameters.post_process_work = 0.0;
     const Outcome late = run(scene, parameters);
     QCOMPARE(late.untangle_passes, 0);
     QCOMPARE(late.final_positions, settled.final_positions);
@@ -376,7 +376,8 @@ class PostProcessTest : public QObject {
     const std::shared_ptr<const Scene> scene =
         data_scene("gc_0485_specification.json", "f_smpl_average_A40.obj");
     ArrangementParameters parameters;
-    parameters.revisit_work = 1e18;  // every round, whatever the default budget
+    parameters.revisit_work = 1e18;  // every revisit and every round, whatever the default budgets
+    parameters.post_process_work = 1e18;
     const Outcome with_round = run(scene, parameters);
     parameters.post_process_fold_iterations = 0;
     const Outcome without = run(scene, parameters);
