@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/arrange/scene.h"
+#include "engine/seeding/scene.h"
 #include "engine/arrange/session.h"
 #include "engine/body/body_mesh.h"
 #include "engine/core/input_file.h"

@@ -6,7 +6,7 @@
 #include "command_line.h"
 #include "commands.h"
 #include "engine/arrange/arrangement_parameters.h"
-#include "engine/arrange/scene.h"
+#include "engine/seeding/scene.h"
 #include "engine/body/default_body.h"
 #include "engine/body/location_overrides.h"
 #include "engine/io/garment_obj.h"

@@ -21,7 +21,7 @@
 #include "engine/arrange/arrangement_parameters.h"
 #include "engine/arrange/batch_arrangement.h"
 #include "engine/arrange/post_process.h"
-#include "engine/arrange/scene.h"
+#include "engine/seeding/scene.h"
 #include "engine/arrange/termination.h"
 #include "engine/core/observer.h"
 #include "engine/seeding/seed_choice.h"
@@ -92,6 +92,11 @@ class SessionObserver : public Observer {
 class Session {
  public:
   Session(std::shared_ptr<const Scene> scene, SessionOptions options = {});
+  // A session that continues `from` at its checkpoint `index` with other options (a recovery
+  // attempt, recovery/recovery.h). The checkpoint must be one taken between batches
+  // (checkpoint_before_batch); the checkpoints before it taken between batches are kept, and
+  // `from` may go away. options.order is what is left of it after the pieces arranged there.
+  Session(const Session& from, std::size_t index, SessionOptions options);
   ~Session();
 
   const Scene& scene() const { return *scene_; }
@@ -115,6 +120,12 @@ class Session {
   Phase checkpoint_phase(std::size_t index) const;
   // Makes checkpoint `index` current and drops the later ones.
   void restore(std::size_t index);
+  // The checkpoint taken between batches just before batch `batch` (report().batches) was
+  // selected: 0 (before the seed) for -1, the one before the post-process for the number of
+  // batches.
+  std::size_t checkpoint_before_batch(int batch) const;
+  // The session's work (SessionReport::work) when checkpoint `index` was taken.
+  double checkpoint_work(std::size_t index) const;
 
   // Arranges in `order` from the first batch whose pieces differ from it, reusing the state
   // before that batch. Also accepted before the session started.
@@ -147,6 +158,7 @@ class Session {
     bool batch_complete = false;  // taken right after a batch was accepted (or after the seed)
   };
 
+  void build_arrangement(const Garment& garment);  // context_, selector_, termination_
   void run_seed(SessionObserver* observer);
   void run_select();
   void run_arrange_step(ArrangeStep step, SessionObserver* observer);

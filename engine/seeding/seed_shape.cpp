@@ -9,8 +9,8 @@
 #include <numbers>
 #include <optional>
 
-#include "engine/arrange/termination.h"
 #include "engine/core/error.h"
+#include "engine/core/mesh_topology.h"
 #include "engine/energy/bending_potential.h"
 #include "engine/energy/body_distance_potential.h"
 #include "engine/energy/body_repulsion_potential.h"
@@ -27,6 +27,21 @@ namespace garment {
 namespace {
 
 // How much a piece's sewn neighbours outside its part say "front" (> 0) or "back" (< 0).
+// The largest stretch (length / rest length − 1) of the springs (mesh edges) of the masked pieces,
+// 0 when none stretches: the termination check's strain (arrange/termination.h) for one batch.
+double max_strain_of(const Garment& garment, const Eigen::MatrixX2i& springs,
+                     const std::vector<bool>& pieces, const Eigen::MatrixX3d& positions) {
+  double strain = 0.0;
+  for (Eigen::Index e = 0; e < springs.rows(); ++e) {
+    const int a = springs(e, 0), b = springs(e, 1);
+    const double rest = (garment.rest_positions.row(a) - garment.rest_positions.row(b)).norm();
+    if (!pieces[garment.vertex_piece(a)] || rest <= 0.0) continue;
+    const double length = (positions.row(a) - positions.row(b)).norm();
+    strain = std::max(strain, (length - rest) / rest);
+  }
+  return strain;
+}
+
 double front_score(const Scene& scene, int piece, const std::vector<int>& part) {
   const Garment& garment = *scene.garment;
   const PieceClassification& classification = scene.classification;
@@ -403,7 +418,8 @@ SeedShapeReport shape_seed(const Scene& scene, const SeedPlan& plan, const Energ
   std::vector<bool> seed_mask(garment.pieces.size(), false);
   for (int piece : plan.pieces())
     seed_mask[piece] = true;
-  const TerminationCheck strain_check(garment);
+  const Eigen::MatrixX2i springs =
+      build_mesh_edges(garment.triangles, garment.vertex_count()).edges;
   const Eigen::MatrixX3d unshaped = positions;
   SeedShapeReport report;
   report.attempts = 0;
@@ -421,7 +437,7 @@ SeedShapeReport shape_seed(const Scene& scene, const SeedPlan& plan, const Energ
     iterations += solved.iterations;
     report.work += solved.work;
     ++report.attempts;
-    const double strain = strain_check.measure(seed_mask, shaped).max_strain;
+    const double strain = max_strain_of(garment, springs, seed_mask, shaped);
     if (strain < report.max_strain) {
       positions = shaped;
       report.max_strain = strain;

@@ -36,7 +36,7 @@
 #include <vector>
 
 #include "engine/arrange/arrangement_parameters.h"
-#include "engine/arrange/scene.h"
+#include "engine/seeding/scene.h"
 #include "engine/body/default_body.h"
 #include "engine/body/exact_body_distance.h"
 #include "engine/core/mesh_topology.h"

@@ -1,4 +1,4 @@
-#include "engine/arrange/scene.h"
+#include "engine/seeding/scene.h"
 
 #include "engine/quality/flat_placement.h"
 
