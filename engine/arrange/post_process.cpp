@@ -163,11 +163,13 @@ bool narrowly_stretched_or_open(const Garment& garment, const Eigen::MatrixX2i& 
     if (taking_part(a) && rest > 0.0)
       strain = std::max(strain, (positions.row(a) - positions.row(b)).norm() / rest - 1.0);
   }
-  for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
-    const int a = garment.sewing_pairs(k, 0), b = garment.sewing_pairs(k, 1);
-    if (taking_part(a) && taking_part(b))
-      gap = std::max(gap, (positions.row(a) - positions.row(b)).norm());
-  }
+  // Dart mouths are seams too (the verdict's seam gap counts them).
+  for (const Eigen::MatrixX2i* pairs : {&garment.sewing_pairs, &garment.dart_pairs})
+    for (Eigen::Index k = 0; k < pairs->rows(); ++k) {
+      const int a = (*pairs)(k, 0), b = (*pairs)(k, 1);
+      if (taking_part(a) && taking_part(b))
+        gap = std::max(gap, (positions.row(a) - positions.row(b)).norm());
+    }
   const bool failing = strain > limits.max_strain || gap > limits.max_seam_gap_m;
   return failing && strain <= kNearMiss * limits.max_strain &&
          gap <= kNearMiss * limits.max_seam_gap_m;

@@ -149,15 +149,17 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
     metrics.p99_strain = strains[rank];
   }
 
-  for (const StitchPairs& stitch : garment_.stitches) {
+  const auto widest_gap = [&](const StitchPairs& stitch, const Eigen::MatrixX2i& pairs) {
     double gap = 0.0;
     for (int k = stitch.first_pair; k < stitch.first_pair + stitch.pair_count; ++k)
-      gap = std::max(gap, (positions.row(garment_.sewing_pairs(k, 0)) -
-                           positions.row(garment_.sewing_pairs(k, 1)))
-                              .norm());
-    metrics.stitch_max_gap_m.push_back(gap);
+      gap = std::max(gap, (positions.row(pairs(k, 0)) - positions.row(pairs(k, 1))).norm());
     metrics.max_seam_gap_m = std::max(metrics.max_seam_gap_m, gap);
-  }
+    return gap;
+  };
+  for (const StitchPairs& stitch : garment_.stitches)
+    metrics.stitch_max_gap_m.push_back(widest_gap(stitch, garment_.sewing_pairs));
+  for (const StitchPairs& dart : garment_.darts)
+    metrics.dart_max_gap_m.push_back(widest_gap(dart, garment_.dart_pairs));
 
   if (body_) {
     const Clock::time_point body_start = Clock::now();

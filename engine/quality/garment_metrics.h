@@ -18,7 +18,8 @@
 //   strain                stretch of the edges of E: max(0, length / rest length - 1), rest
 //                         lengths from rest_positions (compression does not count); the most
 //                         stretched edge's distance from the body
-//   seam gap              distance between the two vertices of a sewing pair
+//   seam gap              distance between the two vertices of a sewing pair or of a dart pair
+//                         (a dart's mouth is a seam too: open, it is a hole in the garment)
 //   tightest opening      the garment's opening (a boundary loop after welding) that the body
 //                         inside it stretches most: girth of the body inside / rest length − 1
 //   misplaced             piece_placement.h
@@ -91,8 +92,9 @@ struct GarmentMetrics {
   // where it sits, however the cloth around it is arranged.
   OpeningFit tightest_opening;
 
-  double max_seam_gap_m = 0.0;
+  double max_seam_gap_m = 0.0;           // over stitches and dart mouths
   std::vector<double> stitch_max_gap_m;  // per Garment::stitches entry
+  std::vector<double> dart_max_gap_m;    // per Garment::darts entry
 
   std::vector<Misplacement> misplaced;
 

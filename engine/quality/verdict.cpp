@@ -21,9 +21,10 @@ std::string piece_list(const Garment& garment, const std::set<int>& pieces) {
 }
 
 void add_failure(QualityVerdict& verdict, const Garment& garment, FailureKind kind,
-                 const std::set<int>& pieces, const std::string& what) {
+                 const std::set<int>& pieces, const std::string& what, double excess) {
   QualityFailure failure;
   failure.kind = kind;
+  failure.excess = excess;
   failure.pieces.assign(pieces.begin(), pieces.end());
   failure.message = what + (pieces.empty() ? "" : ": " + piece_list(garment, pieces));
   verdict.failures.push_back(std::move(failure));
@@ -67,7 +68,8 @@ QualityVerdict judge_garment(const Garment& garment, const GarmentMetrics& metri
     add_failure(verdict, garment, FailureKind::BodyPenetration, pieces,
                 std::to_string(metrics.body_inside_vertices) + " vertices inside the body (" +
                     format("%.1f mm deep", 1000.0 * metrics.max_inside_depth_m) + "), " +
-                    std::to_string(metrics.body_crossing_edges) + " edges crossing its surface");
+                    std::to_string(metrics.body_crossing_edges) + " edges crossing its surface",
+                metrics.body_inside_vertices + metrics.body_crossing_edges);
   }
   if (metrics.self_crossing_edges > 0) {
     std::set<int> pieces;
@@ -80,6 +82,7 @@ QualityVerdict judge_garment(const Garment& garment, const GarmentMetrics& metri
     }
     QualityFailure failure;
     failure.kind = FailureKind::SelfCrossing;
+    failure.excess = metrics.self_crossing_edges;
     failure.pieces.assign(pieces.begin(), pieces.end());
     failure.message =
         std::to_string(metrics.self_crossing_edges) + " cloth edges crossing cloth: " + pairs;
@@ -91,7 +94,8 @@ QualityVerdict judge_garment(const Garment& garment, const GarmentMetrics& metri
       if (metrics.piece_folds[p] > 0) pieces.insert(p);
     add_failure(
         verdict, garment, FailureKind::Fold, pieces,
-        std::to_string(metrics.folds) + " folds" + format(" (theta_in %.2f)", metrics.theta_in));
+        std::to_string(metrics.folds) + " folds" + format(" (theta_in %.2f)", metrics.theta_in),
+        metrics.folds);
   }
   if (metrics.max_strain > thresholds.max_strain) {
     std::set<int> pieces;
@@ -110,22 +114,31 @@ QualityVerdict judge_garment(const Garment& garment, const GarmentMetrics& metri
     }
     add_failure(verdict, garment, FailureKind::Strain, pieces,
                 format("max strain %.1f %%", 100.0 * metrics.max_strain) +
-                    format(" > %.0f %%", 100.0 * thresholds.max_strain) + where);
+                    format(" > %.0f %%", 100.0 * thresholds.max_strain) + where,
+                100.0 * (metrics.max_strain - thresholds.max_strain));
   }
   if (metrics.max_seam_gap_m > thresholds.max_seam_gap_m) {
     std::set<int> pieces;
-    int open = 0;
-    for (std::size_t s = 0; s < garment.stitches.size(); ++s) {
-      if (!(metrics.stitch_max_gap_m[s] > thresholds.max_seam_gap_m)) continue;
-      ++open;
-      const Stitch& stitch = garment.pattern.stitches[garment.stitches[s].stitch];
-      pieces.insert(stitch.a.panel);
-      pieces.insert(stitch.b.panel);
-    }
+    const auto count_open = [&](const std::vector<StitchPairs>& stitches,
+                                const std::vector<double>& gaps) {
+      int open = 0;
+      for (std::size_t s = 0; s < stitches.size() && s < gaps.size(); ++s) {
+        if (!(gaps[s] > thresholds.max_seam_gap_m)) continue;
+        ++open;
+        const Stitch& stitch = garment.pattern.stitches[stitches[s].stitch];
+        pieces.insert(stitch.a.panel);
+        pieces.insert(stitch.b.panel);
+      }
+      return open;
+    };
+    const int open = count_open(garment.stitches, metrics.stitch_max_gap_m);
+    const int open_darts = count_open(garment.darts, metrics.dart_max_gap_m);
     add_failure(verdict, garment, FailureKind::SeamGap, pieces,
                 std::to_string(open) + " open seams, " +
+                    (open_darts > 0 ? std::to_string(open_darts) + " open dart mouths, " : "") +
                     format("max gap %.1f mm", 1000.0 * metrics.max_seam_gap_m) +
-                    format(" > %.0f mm", 1000.0 * thresholds.max_seam_gap_m));
+                    format(" > %.0f mm", 1000.0 * thresholds.max_seam_gap_m),
+                1000.0 * (metrics.max_seam_gap_m - thresholds.max_seam_gap_m));
   }
   if (!metrics.misplaced.empty()) {
     std::set<int> pieces;
@@ -137,6 +150,7 @@ QualityVerdict judge_garment(const Garment& garment, const GarmentMetrics& metri
     }
     QualityFailure failure;
     failure.kind = FailureKind::Misplaced;
+    failure.excess = static_cast<double>(metrics.misplaced.size());
     failure.pieces.assign(pieces.begin(), pieces.end());
     failure.message = std::to_string(metrics.misplaced.size()) + " pieces misplaced: " + details;
     verdict.failures.push_back(std::move(failure));

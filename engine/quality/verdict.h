@@ -1,7 +1,8 @@
 #pragma once
 // The verdict on a garment state (DESIGN.md "Quality"): success when nothing penetrates the body,
-// no cloth crosses cloth, nothing folds, strain ≤ 20 %, every seam is closed to 5 mm and no piece
-// is on the wrong side of the body. Each failure names the pieces involved.
+// no cloth crosses cloth, nothing folds, strain ≤ 20 %, every seam and every dart's mouth is
+// closed to 5 mm and no piece is on the wrong side of the body. Each failure names the pieces
+// involved.
 
 #include <string>
 #include <string_view>
@@ -22,7 +23,7 @@ enum class FailureKind {
   SelfCrossing,     // cloth edges crossing cloth triangles
   Fold,             // folds inside pieces
   Strain,           // stretch above the threshold
-  SeamGap,          // sewing pairs apart beyond the threshold
+  SeamGap,          // sewing pairs or dart mouths apart beyond the threshold
   Misplaced,        // pieces on the wrong side of the body
 };
 
@@ -35,6 +36,11 @@ struct QualityFailure {
   FailureKind kind = FailureKind::BodyPenetration;
   std::vector<int> pieces;  // sorted piece indices
   std::string message;      // one line with the numbers and the piece names
+  // How far past its threshold, in one unit for every kind so that failures can be weighed
+  // against each other (recovery/verdict_rank.h): a count for penetrations (vertices inside and
+  // edges crossing), crossings, folds and misplaced pieces; percentage points of strain over the
+  // limit; millimetres of seam gap over the limit.
+  double excess = 0.0;
 };
 
 struct QualityVerdict {
