@@ -28,6 +28,7 @@
 #include "engine/core/input_file.h"
 #include "engine/core/text.h"
 #include "engine/pattern/pattern_files.h"
+#include "engine/recovery/recovery.h"
 #include "output_plan.h"
 
 namespace garment::cli {
@@ -47,6 +48,9 @@ struct Outcome {
   int vertices = 0, pieces = 0, batches = 0, revisits = 0;
   std::vector<std::string> failures;  // failure kinds
   std::string message;
+  int attempts = 1;        // sessions run by the recovery, the first pass included
+  bool recovered = false;  // clean by an attempt after the first pass
+  std::string cannot_fit;  // the report's cannot_fit message: a design that cannot fit the body
 };
 
 // index.json of GarmentCode datasets: file name → the body it was made for.
@@ -86,6 +90,13 @@ Outcome read_outcome(const Job& job, const std::filesystem::path& report, int ex
   outcome.revisits = json.value("revisits", 0);
   for (const auto& failure : json["quality"]["fails"])
     outcome.failures.push_back(failure.value("kind", "?"));
+  if (json.contains("recovery") && json["recovery"].is_object()) {
+    outcome.attempts =
+        static_cast<int>(json["recovery"].value("attempts", nlohmann::json::array()).size());
+    outcome.recovered = exit_code == 0 && json["recovery"].value("chosen", 0) > 0;
+  }
+  if (json.contains("cannot_fit") && json["cannot_fit"].is_object())
+    outcome.cannot_fit = json["cannot_fit"].value("message", "");
   return outcome;
 }
 
@@ -101,7 +112,7 @@ JobFiles job_files(const Job& job, const std::filesystem::path& output) {
 
 // Runs one job in a child process; returns its outcome (also written next to the output).
 Outcome run_job(const Job& job, const std::filesystem::path& output, double time_limit,
-                const std::string& parameters) {
+                const std::string& parameters, const std::string& attempts) {
   const JobFiles files = job_files(job, output);
   const std::filesystem::path& report = files.report;
   const std::filesystem::path& log = files.log;
@@ -119,6 +130,8 @@ Outcome run_job(const Job& job, const std::filesystem::path& output, double time
                                     report.string(),
                                     "--threads",
                                     "1",
+                                    "--attempts",
+                                    attempts,
                                     "--quiet"};
   if (!parameters.empty()) words.insert(words.end(), {"--parameters", parameters});
   std::vector<char*> argv;
@@ -217,8 +230,13 @@ void write_summary(const std::vector<Outcome>& outcomes, const std::filesystem::
                    double wall_seconds) {
   std::map<std::string, int> statuses, failure_kinds;
   std::vector<double> times;
+  int recovered = 0;
+  nlohmann::json cannot_fit = nlohmann::json::array();
   for (const Outcome& outcome : outcomes) {
     ++statuses[outcome.status];
+    recovered += outcome.recovered ? 1 : 0;
+    if (!outcome.cannot_fit.empty())
+      cannot_fit.push_back({{"name", outcome.name}, {"message", outcome.cannot_fit}});
     for (const std::string& kind : outcome.failures)
       ++failure_kinds[kind];
     if (outcome.status == "ok" || outcome.status == "fails") times.push_back(outcome.seconds);
@@ -229,6 +247,12 @@ void write_summary(const std::vector<Outcome>& outcomes, const std::filesystem::
   json["patterns"] = total;
   json["succeeded"] = statuses["ok"];
   json["success_rate"] = success;
+  // Clean garments split by how: the first pass, or an attempt of the recovery.
+  json["clean_first_pass"] = statuses["ok"] - recovered;
+  json["recovered"] = recovered;
+  json["failed"] = total - statuses["ok"];
+  // Failed garments whose design cannot fit the body (counted in `failed` too).
+  json["cannot_fit"] = cannot_fit;
   json["statuses"] = statuses;
   json["failures_by_class"] = failure_kinds;
   json["seconds"] = {{"median", percentile(times, 0.5)},
@@ -237,31 +261,42 @@ void write_summary(const std::vector<Outcome>& outcomes, const std::filesystem::
                      {"wall", wall_seconds}};
   json["results"] = nlohmann::json::array();
   std::ostringstream markdown;
-  markdown << "# Batch summary\n\n"
-           << "| patterns | succeeded | success rate | median s | p95 s | max s |\n| --- | --- | "
-              "--- | --- | --- | --- |\n";
+  markdown
+      << "# Batch summary\n\n"
+      << "| patterns | succeeded | success rate | clean at first pass | recovered | failed | "
+         "median s | p95 s | max s |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   char line[256];
-  std::snprintf(line, sizeof line, "| %d | %d | %.1f %% | %.2f | %.2f | %.2f |\n\n", total,
-                statuses["ok"], success, percentile(times, 0.5), percentile(times, 0.95),
+  std::snprintf(line, sizeof line, "| %d | %d | %.1f %% | %d | %d | %d | %.2f | %.2f | %.2f |\n\n",
+                total, statuses["ok"], success, statuses["ok"] - recovered, recovered,
+                total - statuses["ok"], percentile(times, 0.5), percentile(times, 0.95),
                 json["seconds"]["max"].get<double>());
-  markdown << line << "| status | count |\n| --- | --- |\n";
+  markdown << line;
+  if (!cannot_fit.empty()) {
+    markdown << "Designs that cannot fit the body (failed, no attempt made):\n\n";
+    for (const auto& entry : cannot_fit)
+      markdown << "- " << entry["name"].get<std::string>() << ": "
+               << entry["message"].get<std::string>() << "\n";
+    markdown << "\n";
+  }
+  markdown << "| status | count |\n| --- | --- |\n";
   for (const auto& [status, count] : statuses)
     markdown << "| " << status << " | " << count << " |\n";
   markdown << "\n| failure class | garments |\n| --- | --- |\n";
   for (const auto& [kind, count] : failure_kinds)
     markdown << "| " << kind << " | " << count << " |\n";
   markdown << "\n| pattern | body | status | seconds | vertices | pieces | batches | revisits | "
-              "failures |\n"
-           << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+              "attempts | failures |\n"
+           << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const Outcome& outcome : outcomes) {
     std::string failures;
     for (const std::string& kind : outcome.failures)
       failures += (failures.empty() ? "" : ", ") + kind;
     if (!outcome.message.empty()) failures += (failures.empty() ? "" : "; ") + outcome.message;
-    std::snprintf(line, sizeof line, "| %s | %s | %s | %.2f | %d | %d | %d | %d | %s |\n",
+    std::snprintf(line, sizeof line, "| %s | %s | %s%s | %.2f | %d | %d | %d | %d | %d | %s |\n",
                   outcome.name.c_str(), outcome.body.c_str(), outcome.status.c_str(),
-                  outcome.seconds, outcome.vertices, outcome.pieces, outcome.batches,
-                  outcome.revisits, failures.c_str());
+                  outcome.recovered ? " (recovered)" : "", outcome.seconds, outcome.vertices,
+                  outcome.pieces, outcome.batches, outcome.revisits, outcome.attempts,
+                  failures.c_str());
     markdown << line;
     json["results"].push_back({{"name", outcome.name},
                                {"body", outcome.body},
@@ -269,16 +304,23 @@ void write_summary(const std::vector<Outcome>& outcomes, const std::filesystem::
                                {"seconds", outcome.seconds},
                                {"vertices", outcome.vertices},
                                {"failures", outcome.failures},
+                               {"attempts", outcome.attempts},
+                               {"recovered", outcome.recovered},
+                               {"cannot_fit", outcome.cannot_fit},
                                {"message", outcome.message}});
   }
   write_file_atomically(output / "summary.md", markdown.str());
   write_file_atomically(output / "summary.json", json.dump(2) + "\n");
   std::printf(
-      "%d patterns: %d ok (%.1f %%), time per garment median %.2f s, p95 %.2f s, max %.2f s\n",
-      total, statuses["ok"], success, percentile(times, 0.5), percentile(times, 0.95),
-      json["seconds"]["max"].get<double>());
+      "%d patterns: %d ok (%.1f %%: %d at the first pass, %d recovered), time per garment median "
+      "%.2f s, p95 %.2f s, max %.2f s\n",
+      total, statuses["ok"], success, statuses["ok"] - recovered, recovered, percentile(times, 0.5),
+      percentile(times, 0.95), json["seconds"]["max"].get<double>());
   for (const auto& [kind, count] : failure_kinds)
     std::printf("  %-20s %d\n", kind.c_str(), count);
+  if (!cannot_fit.empty())
+    std::printf("  %-20s %zu (designs that cannot fit the body)\n", "cannot_fit",
+                cannot_fit.size());
   for (const auto& [status, count] : statuses)
     if (status != "ok" && status != "fails") std::printf("  %-20s %d\n", status.c_str(), count);
   std::printf("summary: %s\n", (output / "summary.md").c_str());
@@ -287,8 +329,9 @@ void write_summary(const std::vector<Outcome>& outcomes, const std::filesystem::
 }  // namespace
 
 int batch_command(const std::vector<std::string>& args) {
-  const CommandLine line(
-      args, {}, {"-o", "--jobs", "--body", "--bodies", "--time-limit", "--limit", "--parameters"});
+  const CommandLine line(args, {},
+                         {"-o", "--jobs", "--body", "--bodies", "--time-limit", "--limit",
+                          "--parameters", "--attempts"});
   const std::filesystem::path folder = line.only_positional("pattern folder");
   const auto output_value = line.value("-o");
   if (!output_value) throw UsageError("-o OUTDIR is required");
@@ -301,6 +344,8 @@ int batch_command(const std::vector<std::string>& args) {
       line.value("--parameters") ? std::filesystem::absolute(*line.value("--parameters")).string()
                                  : std::string();
   if (jobs < 1) throw UsageError("--jobs must be at least 1");
+  const int attempts = line.integer("--attempts", RecoverySettings{}.attempts);
+  if (attempts < 1) throw UsageError("--attempts must be 1 (a single pass) or more");
   if (!std::filesystem::is_directory(folder)) throw InputError(folder.string() + ": not a folder");
 
   const std::map<std::string, std::string> index = bodies_from_index(folder);
@@ -356,7 +401,7 @@ int batch_command(const std::vector<std::string>& args) {
   const auto worker = [&] {
     for (std::size_t k = next++; k < pending.size(); k = next++) {
       const std::size_t i = pending[k];
-      outcomes[i] = run_job(all[i], output, time_limit, parameters);
+      outcomes[i] = run_job(all[i], output, time_limit, parameters, std::to_string(attempts));
       const std::size_t count = ++finished;
       std::lock_guard<std::mutex> lock(print);
       if (terminal) {

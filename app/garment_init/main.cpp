@@ -30,7 +30,7 @@ const Command kCommands[] = {
      "[--seed-pieces a,b "
      "--seed-location NAME] "
      "[--order p1,p2,...] [--threads N] [--edge-length M] [--parameters P.json] [--snapshots DIR] "
-     "[--quiet]",
+     "[--attempts N] [--quiet]",
      "Arranges the pattern on the body (default: the bundled mean body) and writes the garment "
      "OBJ\n"
      "(one group per panel, vt = pattern coordinates); --glb also writes the garment and the body\n"
@@ -43,13 +43,20 @@ const Command kCommands[] = {
      "every\n"
      "phase (NNN_batchB_PHASE.obj), to step through the arrangement. --parameters overrides "
      "stiffnesses,\n"
-     "budgets and thresholds (keys as in the report's \"parameters\"). Exit 0 when the garment "
-     "passes the\n"
-     "quality check, 3 when it was written but fails it.",
+     "budgets and thresholds (keys as in the report's \"parameters\"). A garment that fails the "
+     "quality\n"
+     "check is diagnosed and arranged again from the batch at fault (reorder, another seed, "
+     "another\n"
+     "start, a longer settle), up to --attempts sessions in all (default 8; 1: a single pass), "
+     "the\n"
+     "best kept; the report lists every attempt, and a design that cannot fit the body is said so\n"
+     "(cannot_fit) with no attempt. Exit 0 when the garment passes the quality check, 3 when it "
+     "was\n"
+     "written but fails it.",
      garment::cli::run_command},
     {"batch",
      "batch DIR -o OUTDIR [--jobs N] [--body BODY.obj] [--bodies DIR] [--time-limit S] [--limit N] "
-     "[--parameters P.json]",
+     "[--parameters P.json] [--attempts N]",
      "Runs `run` on every pattern in DIR, each in its own process with one thread and a time "
      "limit\n"
      "(default 300 s), --jobs at a time (default: the number of cores). Each pattern goes on its "
@@ -61,7 +68,8 @@ const Command kCommands[] = {
      "interrupted\n"
      "batch resumes. OUTDIR may not be DIR or lie inside it; jobs die with the batch. Prints a\n"
      "progress bar on a terminal and writes summary.md and summary.json: success\n"
-     "rate, failures by class, time per garment (median, p95, max).",
+     "rate (clean at the first pass, recovered, failed, designs that cannot fit), failures by\n"
+     "class, time per garment (median, p95, max).",
      garment::cli::batch_command},
     {"body", "body [BODY.obj] [--json] [--spacing M] [--no-cache]",
      "Loads a body (default: the bundled resources/bodies/mean_all.obj): OBJ with triangles or\n"

@@ -20,6 +20,7 @@
 #include "engine/io/session_report.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
+#include "engine/recovery/recovery.h"
 #include "engine/seeding/piece_classifier.h"
 #include "output_plan.h"
 
@@ -60,14 +61,19 @@ std::vector<int> piece_indices(const Garment& garment, const std::vector<std::st
 }  // namespace
 
 int run_command(const std::vector<std::string>& args) {
-  const CommandLine line(args, {"--quiet"},
-                         {"--body", "-o", "--glb", "--report", "--seed-pieces", "--seed-location",
-                          "--order", "--threads", "--edge-length", "--snapshots", "--parameters"});
+  const CommandLine line(
+      args, {"--quiet"},
+      {"--body", "-o", "--glb", "--report", "--seed-pieces", "--seed-location", "--order",
+       "--threads", "--edge-length", "--snapshots", "--parameters", "--attempts"});
   const std::string pattern_path = line.only_positional("pattern file");
   const auto output = line.value("-o");
   if (!output) throw UsageError("-o OUT.obj is required");
   const int threads = line.integer("--threads", 0);
   if (threads < 0) throw UsageError("--threads must be 0 (all cores) or more");
+  RecoverySettings recovery;
+  recovery.attempts = line.integer("--attempts", recovery.attempts);
+  if (recovery.attempts < 1) throw UsageError("--attempts must be 1 (a single pass) or more");
+  recovery.threads = threads;
   std::unique_ptr<tbb::global_control> thread_limit;
   if (threads > 0)
     thread_limit = std::make_unique<tbb::global_control>(
@@ -111,7 +117,8 @@ int run_command(const std::vector<std::string>& args) {
   }
   options.order = piece_indices(garment, line.list("--order"), "--order");
 
-  Session session(scene, options);
+  const auto first_pass = std::make_shared<Session>(scene, options);
+  Session& session = *first_pass;
   TerminalProgress progress(!line.has("--quiet") && ::isatty(STDERR_FILENO));
   if (snapshots) std::filesystem::create_directories(*snapshots);
   for (int index = 0; !session.done(); ++index) {
@@ -127,19 +134,23 @@ int run_command(const std::vector<std::string>& args) {
   }
   progress.finish();
 
+  // A garment that fails its verdict is arranged again, from the batch at fault (--attempts 1:
+  // the first pass as it is).
   const BodyReference reference(scene->body->mesh);
-  const GarmentMetrics metrics = measure_garment(garment, session.positions(), &reference,
-                                                 expected_regions_from_names(garment));
-  const QualityVerdict verdict = judge_garment(garment, metrics);
+  const GarmentChecker checker(garment, &reference, expected_regions_from_names(garment));
+  const RecoveryResult recovered = recover(first_pass, checker, recovery);
+  const Session& chosen = *recovered.session;
+  const QualityVerdict& verdict = recovered.verdict;
   // Every output is complete on disk before the first replaces its destination: a failure or a
   // signal up to here leaves all of them as they were.
   AtomicFileSet outputs;
-  outputs.stage(*output, format_garment_obj(garment, session.positions()));
+  outputs.stage(*output, format_garment_obj(garment, chosen.positions()));
   if (glb)
     outputs.stage(
-        *glb,
-        format_glb(garment_glb_meshes(garment, session.positions(), scene->body.get()), *glb));
-  if (report) outputs.stage(*report, session_report_json(session, metrics, verdict) + "\n");
+        *glb, format_glb(garment_glb_meshes(garment, chosen.positions(), scene->body.get()), *glb));
+  if (report)
+    outputs.stage(*report,
+                  session_report_json(chosen, recovered.metrics, verdict, &recovered) + "\n");
   outputs.commit();
 
   const double seconds =
@@ -147,9 +158,20 @@ int run_command(const std::vector<std::string>& args) {
   if (!line.has("--quiet")) {
     std::printf("%s: %zu pieces, %d vertices, %zu batches, seed: %s\n",
                 garment.pattern.source.c_str(), garment.pieces.size(), garment.vertex_count(),
-                session.report().batches.size(), session.report().seed.reason.c_str());
+                chosen.report().batches.size(), chosen.report().seed.reason.c_str());
+    if (recovered.attempts.size() > 1) {
+      const AttemptRecord& best = recovered.attempts[recovered.chosen];
+      std::printf("%zu attempts%s; kept %s\n", recovered.attempts.size(),
+                  recovered.out_of_budget ? " (recovery work spent)" : "",
+                  recovered.chosen == 0 ? "the first pass"
+                                        : ("attempt " + std::to_string(recovered.chosen) + ", " +
+                                           best.action + " (" + best.reason + ")")
+                                              .c_str());
+    }
     std::printf("wrote %s in %.2f s: %s\n", output->c_str(), seconds,
                 verdict.ok() ? "ok" : "fails quality check");
+    if (recovered.cannot_fit)
+      std::printf("  cannot_fit: %s; no attempt made\n", recovered.cannot_fit->message.c_str());
     for (const QualityFailure& failure : verdict.failures)
       std::printf("  %s: %s\n", std::string(failure_kind_name(failure.kind)).c_str(),
                   failure.message.c_str());

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 
 #include "engine/arrange/post_process.h"
 #include "engine/seeding/seed_shape.h"
@@ -54,10 +55,7 @@ const char* to_string(Phase phase) {
 Session::Session(std::shared_ptr<const Scene> scene, SessionOptions options)
     : scene_(std::move(scene)), options_(std::move(options)), started_(now_seconds()) {
   const Garment& garment = *scene_->garment;
-  context_ = std::make_unique<ArrangementContext>(garment, scene_->sdf, scene_->body->landmarks,
-                                                  options_.arrangement);
-  selector_ = std::make_unique<Selector>(garment, options_.arrangement.selection);
-  termination_ = std::make_unique<TerminationCheck>(garment);
+  build_arrangement(garment);
   const BodyLandmarks& landmarks = scene_->body->landmarks;
   automatic_seed_ = choose_seed(garment, scene_->classification, landmarks.neck - landmarks.waist);
   state_.positions = scene_->initial_positions;
@@ -67,7 +65,50 @@ Session::Session(std::shared_ptr<const Scene> scene, SessionOptions options)
   checkpoint(true);
 }
 
+Session::Session(const Session& from, std::size_t index, SessionOptions options)
+    : scene_(from.scene_),
+      options_(std::move(options)),
+      automatic_seed_(from.automatic_seed_),
+      started_(now_seconds()) {
+  const Checkpoint& resumed = from.checkpoints_.at(index);
+  // A batch in progress refers to the other session's arrangement context.
+  if (!resumed.batch_complete || resumed.state.batch)
+    throw std::logic_error("a session continues another only from between batches");
+  build_arrangement(*scene_->garment);
+  for (std::size_t i = 0; i < index; ++i)
+    if (from.checkpoints_[i].batch_complete) checkpoints_.push_back(from.checkpoints_[i]);
+  state_ = resumed.state;
+  state_.report.cancelled = false;
+  state_.explicit_order.clear();
+  for (int piece : options_.order)
+    if (!state_.arranged[piece]) state_.explicit_order.push_back(piece);
+  checkpoint(true);
+}
+
 Session::~Session() = default;
+
+void Session::build_arrangement(const Garment& garment) {
+  context_ = std::make_unique<ArrangementContext>(garment, scene_->sdf, scene_->body->landmarks,
+                                                  options_.arrangement);
+  selector_ = std::make_unique<Selector>(garment, options_.arrangement.selection);
+  termination_ = std::make_unique<TerminationCheck>(garment);
+}
+
+double Session::checkpoint_work(std::size_t index) const {
+  return checkpoints_.at(index).state.report.work;
+}
+
+std::size_t Session::checkpoint_before_batch(int batch) const {
+  if (batch < 0) return 0;
+  std::size_t found = 0;
+  for (std::size_t i = 0; i < checkpoints_.size(); ++i) {
+    const State& state = checkpoints_[i].state;
+    if (checkpoints_[i].batch_complete && state.phase == Phase::Select &&
+        static_cast<int>(state.report.batches.size()) == batch)
+      found = i;
+  }
+  return found;
+}
 
 void Session::checkpoint(bool batch_complete) {
   checkpoints_.push_back({state_, batch_complete});

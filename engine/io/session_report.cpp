@@ -20,7 +20,7 @@ nlohmann::json piece_names(const Garment& garment, const std::vector<int>& piece
 }  // namespace
 
 std::string session_report_json(const Session& session, const GarmentMetrics& metrics,
-                                const QualityVerdict& verdict) {
+                                const QualityVerdict& verdict, const RecoveryResult* recovery) {
   const Garment& garment = *session.scene().garment;
   const SessionReport& report = session.report();
   nlohmann::json json;
@@ -85,6 +85,33 @@ std::string session_report_json(const Session& session, const GarmentMetrics& me
   json["cancelled"] = report.cancelled;
   json["quality"] = nlohmann::json::parse(quality_json(garment, metrics, verdict));
   json["parameters"] = nlohmann::json::parse(parameters_json(session.options().arrangement));
+  if (recovery) {
+    nlohmann::json attempts = nlohmann::json::array();
+    for (const AttemptRecord& attempt : recovery->attempts) {
+      nlohmann::json fails = nlohmann::json::array();
+      for (const QualityFailure& failure : attempt.verdict.failures)
+        fails.push_back(failure_kind_name(failure.kind));
+      attempts.push_back({{"action", attempt.action},
+                          {"reason", attempt.reason},
+                          {"from_attempt", attempt.from_attempt},
+                          {"resume_batch", attempt.resume_batch},
+                          {"ok", attempt.verdict.ok()},
+                          {"fails", fails},
+                          {"excess", attempt.rank.excess},
+                          {"work", attempt.work},
+                          {"seconds", attempt.seconds}});
+    }
+    if (const auto& fit = recovery->cannot_fit)
+      json["cannot_fit"] = {{"pieces", piece_names(garment, fit->pieces)},
+                            {"opening_m", fit->opening_m},
+                            {"body_m", fit->body_m},
+                            {"forced_strain", fit->forced_strain},
+                            {"message", fit->message}};
+    json["recovery"] = {{"attempts", attempts},
+                        {"chosen", recovery->chosen},
+                        {"out_of_budget", recovery->out_of_budget},
+                        {"cancelled", recovery->cancelled}};
+  }
   return json.dump(2);
 }
 

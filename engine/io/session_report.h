@@ -1,17 +1,21 @@
 #pragma once
 // The report of one arrangement as JSON (garment-init run --report, the editor's export): the seed,
 // the arrangement order, the batches with their revisits and checks, solver iterations and seconds
-// per phase, and the quality of the result.
+// per phase, the quality of the result, and the recovery's attempts.
 
 #include <string>
 
 #include "engine/arrange/session.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
+#include "engine/recovery/recovery.h"
 
 namespace garment {
 
+// recovery: the attempts that led to `session` (recovery.h), listed under "recovery"; none: a
+// session run once.
 std::string session_report_json(const Session& session, const GarmentMetrics& metrics,
-                                const QualityVerdict& verdict);
+                                const QualityVerdict& verdict,
+                                const RecoveryResult* recovery = nullptr);
 
 }  // namespace garment

@@ -312,9 +312,15 @@ std::vector<int> SeedPlan::pieces() const {
   return all;
 }
 
-SeedPlan choose_seed(const Garment& garment, const PieceClassification& classification,
-                     double waist_to_neck) {
-  SeedPlan plan;
+std::vector<SeedPlan> seed_candidates(const Garment& garment,
+                                      const PieceClassification& classification,
+                                      double waist_to_neck) {
+  std::vector<SeedPlan> plans;
+  const auto add = [&](std::vector<SeedPart> parts, std::string reason) {
+    for (const SeedPlan& plan : plans)
+      if (plan.pieces() == SeedPlan{parts, false, ""}.pieces()) return;
+    plans.push_back({std::move(parts), false, std::move(reason)});
+  };
   GroupClasses classes = most_probable_classes(classification);
   // 1. The waist piece (a waistband closing round the body). Chest pieces first instead changed
   // the seed of 165 of the 500: 26 came out clean that had not, 25 that had did not.
@@ -322,11 +328,7 @@ SeedPlan choose_seed(const Garment& garment, const PieceClassification& classifi
   std::vector<int> waist = ring_part(garment, classification, classes, SeedClass::Waist);
   const bool hem_band =
       !waist.empty() && is_hem_band(garment, classification, classes, waist, waist_to_neck);
-  if (!waist.empty() && !hem_band) {
-    plan.parts.push_back({std::move(waist), "waist"});
-    plan.reason = "waist piece (classifier)";
-    return plan;
-  }
+  if (!waist.empty() && !hem_band) add({{waist, "waist"}}, "waist piece (classifier)");
   // 2. Front and back chest pieces, before a collar: the paper's own limits (§9) name collars,
   // which fold back over the garment against the rule that every piece faces away from the body;
   // wrapped round the neck as the seed, they twist the bodice they are sewn to. Of the 21
@@ -335,28 +337,20 @@ SeedPlan choose_seed(const Garment& garment, const PieceClassification& classifi
   if (std::vector<SeedPart> chests =
           front_and_back_parts(garment, classification, classes, SeedClass::FrontChest,
                                SeedClass::BackChest, "chest_front", "chest_back");
-      !chests.empty()) {
-    plan.parts = std::move(chests);
-    plan.reason = hem_band ? "chest pieces (classifier; the waist piece is a long top's hem band)"
-                           : "chest pieces (classifier)";
-    return plan;
-  }
+      !chests.empty())
+    add(std::move(chests),
+        hem_band ? "chest pieces (classifier; the waist piece is a long top's hem band)"
+                 : "chest pieces (classifier)");
   // 3. The neck piece (a collar ring) of a garment without chest pieces.
   if (std::vector<int> neck = ring_part(garment, classification, classes, SeedClass::Neck);
-      !neck.empty()) {
-    plan.parts.push_back({std::move(neck), "neck"});
-    plan.reason = "neck piece (classifier)";
-    return plan;
-  }
+      !neck.empty())
+    add({{std::move(neck), "neck"}}, "neck piece (classifier)");
   // 4. Front and back pelvis pieces (skirts and trousers without a waistband).
   if (std::vector<SeedPart> pelvis =
           front_and_back_parts(garment, classification, classes, SeedClass::FrontPelvis,
                                SeedClass::BackPelvis, "pelvis_front", "pelvis_back");
-      !pelvis.empty()) {
-    plan.parts = std::move(pelvis);
-    plan.reason = "pelvis pieces (classifier)";
-    return plan;
-  }
+      !pelvis.empty())
+    add(std::move(pelvis), "pelvis pieces (classifier)");
   // 5. No seed class found: the group with the most garment below its seams (Eq. 1), at the waist.
   const SewingRelationship relationship(garment);
   int best = 0;
@@ -371,9 +365,13 @@ SeedPlan choose_seed(const Garment& garment, const PieceClassification& classifi
       best = g;
     }
   }
-  plan.parts.push_back({classification.groups[best], "waist"});
-  plan.reason = "rule: most garment hanging below its seams";
-  return plan;
+  add({{classification.groups[best], "waist"}}, "rule: most garment hanging below its seams");
+  return plans;
+}
+
+SeedPlan choose_seed(const Garment& garment, const PieceClassification& classification,
+                     double waist_to_neck) {
+  return seed_candidates(garment, classification, waist_to_neck).front();
 }
 
 SeedPlan manual_seed(const Garment& garment, const std::vector<std::string>& piece_names,

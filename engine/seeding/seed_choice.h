@@ -39,6 +39,13 @@ struct SeedPlan {
 SeedPlan choose_seed(const Garment& garment, const PieceClassification& classification,
                      double waist_to_neck = 0.0);
 
+// Every seed the rules above find, in their order, each once: choose_seed's first, then the ones
+// a later rule gives (the classifier's next seeds, which the recovery tries), the last always
+// the rule of Eq. 1.
+std::vector<SeedPlan> seed_candidates(const Garment& garment,
+                                      const PieceClassification& classification,
+                                      double waist_to_neck = 0.0);
+
 // A manual seed from piece names and a location name; throws InputError naming the unknown piece
 // or location (known_locations lists the valid names).
 SeedPlan manual_seed(const Garment& garment, const std::vector<std::string>& piece_names,

@@ -1,0 +1,70 @@
+#pragma once
+// Diagnosis of a failed verdict (issue "Self-correcting arrangement"): which batch of the session
+// brought in each failure, and the corrective actions that fit it, in the order to try them.
+//
+//   pieces crossing each other      → reorder: the later piece before the earlier one, or the two
+//                                     in batches of their own (the paper's remedy, §8.3.2)
+//   a near miss (strain, gaps and    → a longer settle: the post-process again with twice its
+//   folds only, each by a little)      iterations
+//   pieces misplaced, or a failure   → the classifier's next seed (seed_candidates)
+//   in the seed's pieces
+//   a batch tangled (penetration,   → that batch again with another start: stiffer bending,
+//   folds, strain, misplaced)          longer solves, or the rigid fits instead of the draped and
+//                                     wrapped start shapes
+//
+// Plain data in and out: the session's report says which batch arranged each piece.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/arrange/arrangement_parameters.h"
+#include "engine/arrange/session.h"
+#include "engine/quality/garment_metrics.h"
+#include "engine/quality/verdict.h"
+#include "engine/seeding/seed_choice.h"
+
+namespace garment {
+
+enum class RecoveryActionKind {
+  Reorder,         // arrange `order` first, from batch `resume_batch` on
+  Reseed,          // start over with `seed`
+  SettleLonger,    // the post-process again, twice as long
+  StiffenBending,  // from `resume_batch` on, bending twice as stiff
+  LongerSolves,    // from `resume_batch` on, every step's iteration budget doubled
+  RigidStart,      // from `resume_batch` on, rigid fits instead of the draped and wrapped starts
+};
+
+// "reorder", "reseed", "settle_longer", "stiffen_bending", "longer_solves", "rigid_start".
+const char* to_string(RecoveryActionKind kind);
+
+struct RecoveryAction {
+  RecoveryActionKind kind = RecoveryActionKind::Reorder;
+  // The batch (SessionReport::batches) the attempt starts again from: -1 the seed; the number of
+  // batches the post-process.
+  int resume_batch = -1;
+  std::vector<int> order;        // Reorder: pieces to arrange next, each in a batch of its own
+  std::optional<SeedPlan> seed;  // Reseed
+  std::string reason;            // one line: what and why, with piece names
+
+  // The same action on the same session: equal keys (the recovery tries each once).
+  std::string key() const;
+};
+
+struct Diagnosis {
+  // #pieces: the batch that arranged each piece; -1 the seed, -2 never arranged.
+  std::vector<int> piece_batch;
+  // Per failure of the verdict, in its order: the earliest batch among its pieces (-1 the seed).
+  std::vector<int> failure_batch;
+  std::vector<RecoveryAction> actions;  // in the order to try
+};
+
+// seeds: seed_candidates of the garment; the report's own seed is left out of the reseeds.
+Diagnosis diagnose(const Garment& garment, const SessionReport& report,
+                   const GarmentMetrics& metrics, const QualityVerdict& verdict,
+                   const std::vector<SeedPlan>& seeds);
+
+// The session options an action gives, from those of the session it corrects.
+SessionOptions apply_action(const RecoveryAction& action, SessionOptions options);
+
+}  // namespace garment

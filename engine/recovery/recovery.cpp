@@ -1,0 +1,162 @@
+#include "engine/recovery/recovery.h"
+
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <thread>
+
+#include "engine/seeding/seed_choice.h"
+
+namespace garment {
+namespace {
+
+// Attempts report nothing on the way (several run at once); they only listen for a cancel.
+class CancelOnly : public SessionObserver {
+ public:
+  explicit CancelOnly(Observer* target) : target_(target) {}
+  bool cancel_requested() const override { return target_ && target_->cancel_requested(); }
+
+ private:
+  Observer* target_;
+};
+
+struct Attempt {
+  RecoveryAction action;
+  std::shared_ptr<Session> session;
+  GarmentMetrics metrics;
+  AttemptRecord record;
+};
+
+// What an action on `base` is likely to cost: the work `base` did from the checkpoint the action
+// resumes, twice that for the actions that double the iterations. Deterministic, so that which
+// actions fit the budget does not depend on the machine.
+double estimated_work(const Session& base, const RecoveryAction& action) {
+  const double after =
+      base.report().work - base.checkpoint_work(base.checkpoint_before_batch(action.resume_batch));
+  const bool doubled = action.kind == RecoveryActionKind::SettleLonger ||
+                       action.kind == RecoveryActionKind::LongerSolves;
+  return doubled ? 2.0 * after : after;
+}
+
+void run_attempt(const Session& base, const GarmentChecker& checker, Observer* observer,
+                 Attempt& attempt) {
+  const auto start = std::chrono::steady_clock::now();
+  const RecoveryAction& action = attempt.action;
+  attempt.session =
+      std::make_shared<Session>(base, base.checkpoint_before_batch(action.resume_batch),
+                                apply_action(action, base.options()));
+  const double work_before = attempt.session->report().work;
+  CancelOnly cancel(observer);
+  attempt.session->run(&cancel);
+  attempt.metrics = checker.measure(attempt.session->positions());
+  AttemptRecord& record = attempt.record;
+  record.action = to_string(action.kind);
+  record.reason = action.reason;
+  record.resume_batch = action.resume_batch;
+  record.verdict = judge_garment(*base.scene().garment, attempt.metrics);
+  record.rank = rank_verdict(record.verdict);
+  record.work = attempt.session->report().work - work_before;
+  record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+RecoveryResult recover(std::shared_ptr<const Session> first_pass, const GarmentChecker& checker,
+                       const RecoverySettings& settings, Observer* observer) {
+  const Scene& scene = first_pass->scene();
+  const Garment& garment = *scene.garment;
+  RecoveryResult result;
+  result.session = first_pass;
+  result.metrics = checker.measure(first_pass->positions());
+  result.verdict = judge_garment(garment, result.metrics);
+  AttemptRecord first;
+  first.action = "first pass";
+  first.verdict = result.verdict;
+  first.rank = rank_verdict(result.verdict);
+  first.work = first_pass->report().work;
+  first.seconds = first_pass->report().seconds;
+  result.attempts.push_back(std::move(first));
+  if (result.verdict.failed(FailureKind::Strain)) {
+    result.cannot_fit =
+        find_cannot_fit(garment, result.metrics, *scene.body, QualityThresholds{}.max_strain);
+    if (result.cannot_fit) return result;
+  }
+
+  const BodyLandmarks& landmarks = scene.body->landmarks;
+  const std::vector<SeedPlan> seeds =
+      seed_candidates(garment, scene.classification, landmarks.neck - landmarks.waist);
+  const int concurrency =
+      settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
+  // Each action once per garment: the same action again on an attempt that took it compounds it
+  // (bending ×4, ×8) rather than trying something else.
+  std::vector<std::string> tried;
+  double used = 0.0;
+  while (!result.verdict.ok() && static_cast<int>(result.attempts.size()) < settings.attempts) {
+    if (observer && observer->cancel_requested()) {
+      result.cancelled = true;
+      break;
+    }
+    const Diagnosis diagnosis =
+        diagnose(garment, result.session->report(), result.metrics, result.verdict, seeds);
+    const int left = settings.attempts - static_cast<int>(result.attempts.size());
+    std::vector<Attempt> round;
+    double planned = used;
+    bool over_budget = false;
+    for (const RecoveryAction& action : diagnosis.actions) {
+      if (static_cast<int>(round.size()) >= std::min(left, concurrency)) break;
+      const std::string key = action.key();
+      if (std::find(tried.begin(), tried.end(), key) != tried.end()) continue;
+      // An action that would take the attempts past their work is passed over for a cheaper one.
+      const double cost = estimated_work(*result.session, action);
+      if (planned + cost > settings.work) {
+        over_budget = true;
+        continue;
+      }
+      planned += cost;
+      tried.push_back(key);
+      round.push_back({action, nullptr, {}, {}});
+    }
+    if (round.empty()) {
+      result.out_of_budget = over_budget;
+      break;
+    }
+    // Each attempt on a fixed share of the threads: the same shares whatever the load.
+    const int share = std::max(1, concurrency / static_cast<int>(round.size()));
+    std::vector<std::exception_ptr> errors(round.size());
+    std::vector<std::thread> threads;
+    for (std::size_t i = 0; i < round.size(); ++i)
+      threads.emplace_back([&, i] {
+        try {
+          tbb::task_arena arena(share);
+          arena.execute([&] { run_attempt(*result.session, checker, observer, round[i]); });
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      });
+    for (std::thread& thread : threads)
+      thread.join();
+    for (const std::exception_ptr& error : errors)
+      if (error) std::rethrow_exception(error);
+    if (observer && observer->cancel_requested()) {
+      result.cancelled = true;
+      break;
+    }
+    const int base = result.chosen;
+    for (Attempt& attempt : round) {
+      attempt.record.from_attempt = base;
+      used += attempt.record.work;
+      result.attempts.push_back(attempt.record);
+      if (better_rank(attempt.record.rank, rank_verdict(result.verdict))) {
+        result.chosen = static_cast<int>(result.attempts.size()) - 1;
+        result.session = attempt.session;
+        result.metrics = std::move(attempt.metrics);
+        result.verdict = attempt.record.verdict;
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace garment

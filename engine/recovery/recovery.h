@@ -1,0 +1,63 @@
+#pragma once
+// The recovery loop (issue "Self-correcting arrangement"): a garment that fails its verdict is
+// diagnosed (diagnosis.h) and arranged again by attempts that each resume the best session so far
+// from the checkpoint before the batch at fault, with one corrective action applied. The best
+// garment by the order of verdicts (verdict_rank.h) is kept. Attempts run in rounds, as many at
+// once as there are threads, each on its share of them (a task arena of fixed size, so that the
+// garment depends on the thread count, never on the machine's load); rounds stop at a clean
+// garment, at the number of attempts, or when no action left is expected to fit in `work` (free
+// vertices × solver iterations, as the session's budgets; an action is expected to cost what the
+// session it corrects did from the checkpoint it resumes). Cancellable between solver iterations. A
+// design that cannot fit the body (cannot_fit.h) gets no attempt.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/arrange/session.h"
+#include "engine/core/observer.h"
+#include "engine/quality/garment_metrics.h"
+#include "engine/quality/verdict.h"
+#include "engine/recovery/cannot_fit.h"
+#include "engine/recovery/diagnosis.h"
+#include "engine/recovery/verdict_rank.h"
+
+namespace garment {
+
+struct RecoverySettings {
+  int attempts = 8;  // sessions in all, the first pass included (1: the first pass alone)
+  // The attempts' own work in all. On the even half's failures at 60 million, garments took up to
+  // 164 s (gc_0424, 1 thread) against the 45 s the issue allows; 30 million is half of that.
+  double work = 30e6;
+  int threads = 0;  // threads to share among concurrent attempts; 0: TBB's default
+};
+
+struct AttemptRecord {
+  std::string action;  // to_string(RecoveryActionKind); "first pass" for the first
+  std::string reason;
+  int from_attempt = -1;  // the attempt it resumed (-1 for the first pass)
+  int resume_batch = -1;  // RecoveryAction::resume_batch
+  QualityVerdict verdict;
+  VerdictRank rank;
+  double work = 0.0;  // its own, past the checkpoint it resumed
+  double seconds = 0.0;
+};
+
+struct RecoveryResult {
+  std::vector<AttemptRecord> attempts;  // the first pass first
+  int chosen = 0;
+  bool out_of_budget = false;  // actions were passed over for `work`
+  bool cancelled = false;
+  // A design no arrangement can pass (cannot_fit.h): no attempt was made.
+  std::optional<CannotFit> cannot_fit;
+  std::shared_ptr<const Session> session;  // the chosen attempt's
+  GarmentMetrics metrics;                  // of the chosen garment
+  QualityVerdict verdict;
+};
+
+// first_pass: a session run to its end. checker: for the scene's garment and body.
+RecoveryResult recover(std::shared_ptr<const Session> first_pass, const GarmentChecker& checker,
+                       const RecoverySettings& settings = {}, Observer* observer = nullptr);
+
+}  // namespace garment

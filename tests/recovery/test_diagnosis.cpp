@@ -1,0 +1,164 @@
+// The diagnosis of a failed verdict (engine/recovery/diagnosis.h) on a session report written by
+// hand: four pieces, the seed (piece 0) at the waist, batch 0 = pieces 1 and 2, batch 1 = piece 3.
+// - each failure is put on the earliest batch among its pieces, each piece on its batch;
+// - crossing pieces of two batches → the later arranged before the earlier, from the earlier's
+//   batch; crossing inside a batch → the two in batches of their own, in either order;
+// - misplaced pieces → every other seed the rules find, from the seed; never the seed in use;
+// - a near miss → first a longer settle, resumed at the post-process;
+// - apply_action changes what the action says and nothing else.
+
+#include <QtTest>
+
+#include "engine/recovery/diagnosis.h"
+
+using namespace garment;
+
+namespace {
+
+Garment four_pieces() {
+  Garment garment;
+  garment.pieces.resize(4);
+  const char* names[] = {"waistband", "skirt_front", "skirt_back", "pocket"};
+  for (int p = 0; p < 4; ++p)
+    garment.pieces[p].name = names[p];
+  return garment;
+}
+
+SessionReport two_batches() {
+  SessionReport report;
+  report.seed.parts.push_back({{0}, "waist"});
+  report.batches.resize(2);
+  report.batches[0].pieces = {1, 2};
+  report.batches[1].pieces = {3};
+  report.order = {0, 1, 2, 3};
+  return report;
+}
+
+QualityFailure failure(FailureKind kind, std::vector<int> pieces, double excess) {
+  QualityFailure made;
+  made.kind = kind;
+  made.pieces = std::move(pieces);
+  made.excess = excess;
+  return made;
+}
+
+SeedPlan seed_of(std::vector<int> pieces, const char* location, const char* reason) {
+  SeedPlan plan;
+  plan.parts.push_back({std::move(pieces), location});
+  plan.reason = reason;
+  return plan;
+}
+
+}  // namespace
+
+class DiagnosisTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void crossingPiecesAreReordered() {
+    const Garment garment = four_pieces();
+    GarmentMetrics metrics;
+    metrics.self_crossing_pairs = {{1, 2, 4}, {1, 3, 12}};
+    QualityVerdict verdict;
+    verdict.failures.push_back(failure(FailureKind::SelfCrossing, {1, 2, 3}, 16));
+    const Diagnosis diagnosis = diagnose(garment, two_batches(), metrics, verdict, {});
+
+    QCOMPARE(diagnosis.piece_batch, (std::vector<int>{-1, 0, 0, 1}));
+    QCOMPARE(diagnosis.failure_batch, (std::vector<int>{0}));
+    QVERIFY(diagnosis.actions.size() >= 3);
+    // The most crossed pair first: the pocket (batch 1) before the front (batch 0).
+    const RecoveryAction& first = diagnosis.actions[0];
+    QCOMPARE(first.kind, RecoveryActionKind::Reorder);
+    QCOMPARE(first.resume_batch, 0);
+    QCOMPARE(first.order, (std::vector<int>{3, 1}));
+    QVERIFY(first.reason.find("pocket arranged before skirt_front") != std::string::npos);
+    // The pair inside batch 0: each in a batch of its own, both ways.
+    QCOMPARE(diagnosis.actions[1].order, (std::vector<int>{1, 2}));
+    QCOMPARE(diagnosis.actions[2].order, (std::vector<int>{2, 1}));
+    QCOMPARE(diagnosis.actions[2].resume_batch, 0);
+    for (const RecoveryAction& action : diagnosis.actions) {
+      QVERIFY(action.kind != RecoveryActionKind::Reseed);        // the seed is not at fault
+      QVERIFY(action.kind != RecoveryActionKind::SettleLonger);  // 16 crossings: no near miss
+    }
+    // Each action once.
+    for (std::size_t i = 0; i < diagnosis.actions.size(); ++i)
+      for (std::size_t j = i + 1; j < diagnosis.actions.size(); ++j)
+        QVERIFY(diagnosis.actions[i].key() != diagnosis.actions[j].key());
+  }
+
+  void misplacedPiecesTryTheOtherSeeds() {
+    const Garment garment = four_pieces();
+    QualityVerdict verdict;
+    verdict.failures.push_back(failure(FailureKind::Misplaced, {3}, 1));
+    const std::vector<SeedPlan> seeds = {seed_of({0}, "waist", "waist piece (classifier)"),
+                                         seed_of({1, 2}, "pelvis_front", "pelvis pieces")};
+    const Diagnosis diagnosis = diagnose(garment, two_batches(), {}, verdict, seeds);
+    const auto reseeds = std::count_if(
+        diagnosis.actions.begin(), diagnosis.actions.end(),
+        [](const RecoveryAction& action) { return action.kind == RecoveryActionKind::Reseed; });
+    QCOMPARE(reseeds, 1);  // the seed in use is not tried again
+    const RecoveryAction& reseed = diagnosis.actions[0];
+    QCOMPARE(reseed.kind, RecoveryActionKind::Reseed);
+    QCOMPARE(reseed.resume_batch, -1);
+    QVERIFY(reseed.seed.has_value());
+    QCOMPARE(reseed.seed->pieces(), (std::vector<int>{1, 2}));
+    // Then other starts from the batch at fault (the pocket's).
+    QCOMPARE(diagnosis.actions.back().resume_batch, 1);
+  }
+
+  void aNearMissSettlesLongerFirst() {
+    const Garment garment = four_pieces();
+    QualityVerdict verdict;
+    verdict.failures.push_back(failure(FailureKind::Strain, {1}, 1.5));
+    verdict.failures.push_back(failure(FailureKind::SeamGap, {1, 2}, 0.8));
+    const Diagnosis diagnosis = diagnose(garment, two_batches(), {}, verdict, {});
+    QVERIFY(!diagnosis.actions.empty());
+    QCOMPARE(diagnosis.actions[0].kind, RecoveryActionKind::SettleLonger);
+    QCOMPARE(diagnosis.actions[0].resume_batch, 2);  // the post-process, after both batches
+
+    // Far past the strain limit it is no near miss.
+    verdict.failures[0].excess = 30.0;
+    const Diagnosis far = diagnose(garment, two_batches(), {}, verdict, {});
+    QVERIFY(far.actions.empty() || far.actions[0].kind != RecoveryActionKind::SettleLonger);
+  }
+
+  void actionsChangeOnlyWhatTheySay() {
+    SessionOptions options;
+    options.order = {2};
+    const ArrangementParameters defaults;
+
+    RecoveryAction settle;
+    settle.kind = RecoveryActionKind::SettleLonger;
+    const SessionOptions settled = apply_action(settle, options);
+    QCOMPARE(settled.arrangement.post_process_iterations, 2 * defaults.post_process_iterations);
+    QCOMPARE(settled.arrangement.post_process_fold_iterations,
+             2 * defaults.post_process_fold_iterations);
+    QCOMPARE(settled.order, options.order);
+    QCOMPARE(settled.arrangement.energy.bending_stiffness, defaults.energy.bending_stiffness);
+
+    RecoveryAction reorder;
+    reorder.kind = RecoveryActionKind::Reorder;
+    reorder.order = {3, 1};
+    QCOMPARE(apply_action(reorder, options).order, (std::vector<int>{3, 1}));
+
+    RecoveryAction reseed;
+    reseed.kind = RecoveryActionKind::Reseed;
+    reseed.seed = seed_of({1, 2}, "pelvis_front", "pelvis pieces");
+    const SessionOptions reseeded = apply_action(reseed, options);
+    QVERIFY(reseeded.seed.has_value());
+    QVERIFY(reseeded.order.empty());  // an order was for the other seed's session
+
+    RecoveryAction stiffer;
+    stiffer.kind = RecoveryActionKind::StiffenBending;
+    QCOMPARE(apply_action(stiffer, options).arrangement.energy.bending_stiffness,
+             2 * defaults.energy.bending_stiffness);
+
+    RecoveryAction rigid;
+    rigid.kind = RecoveryActionKind::RigidStart;
+    const SessionOptions rigid_options = apply_action(rigid, options);
+    QCOMPARE(rigid_options.arrangement.limb_wrap.reach, 0.0);
+    QVERIFY(rigid_options.arrangement.seam_drape.sideways_below < 0.0);
+  }
+};
+
+QTEST_APPLESS_MAIN(DiagnosisTest)
+#include "test_diagnosis.moc"
