@@ -8,9 +8,9 @@
 #include <Eigen/Core>
 #include <functional>
 
-#include "engine/seeding/scene.h"
 #include "engine/core/observer.h"
 #include "engine/energy/energy_parameters.h"
+#include "engine/seeding/scene.h"
 #include "engine/seeding/seed_choice.h"
 
 namespace garment {

@@ -36,7 +36,6 @@
 #include <vector>
 
 #include "engine/arrange/arrangement_parameters.h"
-#include "engine/seeding/scene.h"
 #include "engine/body/default_body.h"
 #include "engine/body/exact_body_distance.h"
 #include "engine/core/mesh_topology.h"
@@ -44,6 +43,7 @@
 #include "engine/pattern/garment_mesh.h"
 #include "engine/quality/exact_intersections.h"
 #include "engine/quality/piece_placement.h"
+#include "engine/seeding/scene.h"
 #include "engine/seeding/seed_choice.h"
 #include "engine/seeding/seed_shape.h"
 #include "support/test_paths.h"
