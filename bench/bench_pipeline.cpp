@@ -19,7 +19,6 @@
 #include <string>
 #include <vector>
 
-#include "engine/arrange/session.h"
 #include "engine/body/body_mesh.h"
 #include "engine/core/input_file.h"
 #include "engine/io/parameters_json.h"
@@ -27,6 +26,7 @@
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
 #include "engine/seeding/scene.h"
+#include "engine/session/session.h"
 
 namespace {
 

@@ -30,7 +30,7 @@
 #include <optional>
 #include <vector>
 
-#include "engine/arrange/session.h"
+#include "engine/session/session.h"
 
 namespace garment::ui {
 

@@ -9,7 +9,6 @@
 
 #include "command_line.h"
 #include "commands.h"
-#include "engine/arrange/session.h"
 #include "engine/body/default_body.h"
 #include "engine/body/location_overrides.h"
 #include "engine/core/atomic_file.h"
@@ -22,6 +21,7 @@
 #include "engine/quality/verdict.h"
 #include "engine/recovery/recovery.h"
 #include "engine/seeding/piece_classifier.h"
+#include "engine/session/session.h"
 #include "output_plan.h"
 
 namespace garment::cli {

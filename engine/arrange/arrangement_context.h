@@ -5,9 +5,7 @@
 
 #include <memory>
 
-#include "engine/arrange/alignment.h"
 #include "engine/arrange/arrangement_parameters.h"
-#include "engine/arrange/garment_graph.h"
 #include "engine/body/body_landmarks.h"
 #include "engine/body/distance_grid.h"
 #include "engine/core/mesh_topology.h"
@@ -16,7 +14,9 @@
 #include "engine/energy/gravity_potential.h"
 #include "engine/energy/sewing_potential.h"
 #include "engine/energy/stretch_potential.h"
+#include "engine/pattern/garment_graph.h"
 #include "engine/pattern/garment_mesh.h"
+#include "engine/start_shapes/alignment.h"
 
 namespace garment {
 

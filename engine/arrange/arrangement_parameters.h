@@ -3,10 +3,10 @@
 // constant across all examples (§8) and gives the solver iteration budgets per step in its Fig. 5;
 // ours were chosen by measurement on the shared GarmentCode patterns (bench/bench_pipeline).
 
-#include "engine/arrange/limb_wrap.h"
-#include "engine/arrange/seam_drape.h"
-#include "engine/arrange/selection.h"
 #include "engine/energy/energy_parameters.h"
+#include "engine/selection/selection.h"
+#include "engine/start_shapes/limb_wrap.h"
+#include "engine/start_shapes/seam_drape.h"
 
 namespace garment {
 

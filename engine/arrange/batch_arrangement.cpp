@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <chrono>
 
-#include "engine/arrange/limb_wrap.h"
 #include "engine/energy/fixing_potential.h"
 #include "engine/energy/objective.h"
 #include "engine/energy/self_repulsion_potential.h"
+#include "engine/start_shapes/limb_wrap.h"
 
 namespace garment {
 

@@ -5,10 +5,10 @@
 
 #include <string>
 
-#include "engine/arrange/session.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
 #include "engine/recovery/recovery.h"
+#include "engine/session/session.h"
 
 namespace garment {
 

@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "engine/arrange/arrangement_parameters.h"
-#include "engine/arrange/session.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
 #include "engine/seeding/seed_choice.h"
+#include "engine/session/session.h"
 
 namespace garment {
 

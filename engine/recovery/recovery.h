@@ -15,13 +15,13 @@
 #include <string>
 #include <vector>
 
-#include "engine/arrange/session.h"
 #include "engine/core/observer.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
 #include "engine/recovery/cannot_fit.h"
 #include "engine/recovery/diagnosis.h"
 #include "engine/recovery/verdict_rank.h"
+#include "engine/session/session.h"
 
 namespace garment {
 

@@ -28,7 +28,7 @@ namespace {
 
 // How much a piece's sewn neighbours outside its part say "front" (> 0) or "back" (< 0).
 // The largest stretch (length / rest length − 1) of the springs (mesh edges) of the masked pieces,
-// 0 when none stretches: the termination check's strain (arrange/termination.h) for one batch.
+// 0 when none stretches: the termination check's strain (termination/termination.h) for one batch.
 double max_strain_of(const Garment& garment, const Eigen::MatrixX2i& springs,
                      const std::vector<bool>& pieces, const Eigen::MatrixX3d& positions) {
   double strain = 0.0;

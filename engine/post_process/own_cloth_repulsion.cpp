@@ -1,4 +1,4 @@
-#include "engine/arrange/own_cloth_repulsion.h"
+#include "engine/post_process/own_cloth_repulsion.h"
 
 #include "engine/quality/exact_intersections.h"
 

@@ -28,10 +28,10 @@
 #include <limits>
 #include <utility>
 
-#include "engine/arrange/session.h"
 #include "engine/core/mesh_topology.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
+#include "engine/session/session.h"
 #include "support/test_environment.h"
 #include "support/test_paths.h"
 
@@ -97,7 +97,7 @@ class PostProcessTest : public QObject {
   void strainLimitBringsOverstretchedEdgesBack() {
     // Two whole sessions at full budgets, a minute under the sanitizers for figures the Release
     // run checks; the sanitizers see the limited springs in every session's post-process
-    // (arrange_session, ui_studio_session) and in energy_gradients.
+    // (session_session, ui_studio_session) and in energy_gradients.
     if (test::sanitizer_build())
       QSKIP("a sanitizer build: the strain figures are checked in the Release run");
     // One thread: both sessions arrange the garment identically before their post-processes.
@@ -179,7 +179,7 @@ class PostProcessTest : public QObject {
 
   void untanglingSeparatesPiecesThatCrossAfterTheSettle() {
     if (test::sanitizer_build())
-      QSKIP("a sanitizer build: the untangling kernel runs there in arrange_untangle");
+      QSKIP("a sanitizer build: the untangling kernel runs there in post_process_untangle");
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     // gc_0012 (a skirt in two panels and a two-part waistband) on f_smpl_average_A40: the front
     // and back panels, arranged in one batch, end the settle through each other at a side seam.

@@ -1,19 +1,18 @@
-#include "engine/arrange/post_process.h"
+#include "engine/post_process/post_process.h"
 
 #include <chrono>
 #include <functional>
 #include <numeric>
 
-#include "engine/arrange/leg_tubes.h"
-#include "engine/arrange/own_cloth_repulsion.h"
-#include "engine/arrange/session.h"
-#include "engine/arrange/untangle.h"
 #include "engine/core/mesh_geometry.h"
 #include "engine/core/mesh_topology.h"
 #include "engine/energy/body_edge_repulsion_potential.h"
 #include "engine/energy/objective.h"
 #include "engine/energy/self_repulsion_potential.h"
 #include "engine/energy/side_barrier_potential.h"
+#include "engine/post_process/leg_tubes.h"
+#include "engine/post_process/own_cloth_repulsion.h"
+#include "engine/post_process/untangle.h"
 #include "engine/quality/exact_intersections.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
@@ -188,7 +187,8 @@ bool has_folds(const Garment& garment, const MeshEdges& mesh, const Eigen::Matri
 
 }  // namespace
 
-PostProcessReport post_process(ArrangementContext& context, const SessionReport& report,
+PostProcessReport post_process(ArrangementContext& context,
+                               const std::vector<std::vector<int>>& layers, double work_before,
                                const std::vector<bool>& arranged, Eigen::MatrixX3d& positions,
                                Observer* observer, const IterateCallback& on_iterate) {
   const auto start = std::chrono::steady_clock::now();
@@ -239,9 +239,6 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   // Layers in arrangement order: the seed, then each batch, outside everything before it. Vertices
   // on and next to a seam with an earlier layer are held by the seam instead (see
   // BatchArrangement).
-  std::vector<std::vector<int>> layers{report.seed.pieces()};
-  for (const BatchRecord& batch : report.batches)
-    layers.push_back(batch.pieces);
   std::vector<bool> earlier(garment.pieces.size(), false);
   SelfRepulsionSettings self;
   self.stiffness = energy.self_repulsion_stiffness * parameters.post_process_repulsion_factor;
@@ -290,7 +287,7 @@ PostProcessReport post_process(ArrangementContext& context, const SessionReport&
   result.final_energy = solved.final_energy;
   // Settling on while the garment narrowly fails the verdict on strain or an open seam, in rounds
   // that stop as soon as it passes them, and only within the session's post-process work.
-  const auto work_so_far = [&] { return report.work + result.work; };
+  const auto work_so_far = [&] { return work_before + result.work; };
   for (int extra = parameters.post_process_extra_iterations;
        extra > 0 && solved.reason != StopReason::Cancelled &&
        work_so_far() < parameters.post_process_work &&

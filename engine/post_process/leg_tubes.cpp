@@ -1,4 +1,4 @@
-#include "engine/arrange/leg_tubes.h"
+#include "engine/post_process/leg_tubes.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-// Piece selection (engine/arrange/selection.h, paper §6): on the patterns of tests/data, grown
+// Piece selection (engine/selection/selection.h, paper §6): on the patterns of tests/data, grown
 // batch by batch from every possible first piece, the selector proposes only unarranged pieces
 // sewn to the arranged set, best first, and fills batches as a maximal prefix of its candidates
 // within the vertex cap; on a hand-made pattern, Eq. 6 scores and their order equal values
@@ -10,10 +10,10 @@
 #include <algorithm>
 #include <set>
 
-#include "engine/arrange/selection.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/pattern.h"
 #include "engine/quality/flat_placement.h"
+#include "engine/selection/selection.h"
 #include "support/rectangle_patterns.h"
 #include "support/test_paths.h"
 

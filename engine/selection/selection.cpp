@@ -1,4 +1,4 @@
-#include "engine/arrange/selection.h"
+#include "engine/selection/selection.h"
 
 #include <algorithm>
 #include <cmath>

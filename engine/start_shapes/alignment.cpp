@@ -1,4 +1,4 @@
-#include "engine/arrange/alignment.h"
+#include "engine/start_shapes/alignment.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/SVD>

@@ -1,4 +1,4 @@
-// Initial alignment (engine/arrange/alignment.h, paper §7.1, Eq. 8): the weighted Kabsch fit
+// Initial alignment (engine/start_shapes/alignment.h, paper §7.1, Eq. 8): the weighted Kabsch fit
 // recovers a known random rotation and translation exactly, never mirrors, ignores zero weights;
 // a piece sewn to a partner laid out as its flat continuation is placed back exactly where the
 // known transform puts it; on the patterns of tests/data the fit moves with its partners (a rigid
@@ -15,9 +15,9 @@
 #include <random>
 
 #include "energy/analytic_distance_grid.h"
-#include "engine/arrange/alignment.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/quality/flat_placement.h"
+#include "engine/start_shapes/alignment.h"
 #include "support/rectangle_patterns.h"
 #include "support/test_paths.h"
 

@@ -1,6 +1,6 @@
-#include "engine/arrange/limb_wrap.h"
+#include "engine/start_shapes/limb_wrap.h"
 
-#include "engine/arrange/alignment.h"
+#include "engine/start_shapes/alignment.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -1,5 +1,5 @@
-// drape_from_seam (engine/arrange/seam_drape.h) on the circle skirt of gc_0068: its back panel is
-// a half annulus sewn along the inner arc to the two back bodice halves. With the bodice's seam
+// drape_from_seam (engine/start_shapes/seam_drape.h) on the circle skirt of gc_0068: its back panel
+// is a half annulus sewn along the inner arc to the two back bodice halves. With the bodice's seam
 // laid where the rigid fit lays the panel flat and horizontal (the disc of the flying-skirt
 // failure) and the torso's axis through the arc's centre, the panel is hung instead:
 //   - its seam vertices stay on their partners (within the 5 mm seam-gap verdict);
@@ -26,11 +26,11 @@
 #include <numbers>
 #include <tuple>
 
-#include "engine/arrange/seam_drape.h"
 #include "engine/core/mesh_topology.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/pattern.h"
 #include "engine/quality/exact_intersections.h"
+#include "engine/start_shapes/seam_drape.h"
 #include "support/test_paths.h"
 
 using namespace garment;

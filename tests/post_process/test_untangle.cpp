@@ -1,6 +1,6 @@
-// contour_minimizing_displacement (engine/arrange/untangle.h) on two sheets that pass through each
-// other: a flat sheet at z = 0 and a small pyramid under it whose tip pokes through, so that the
-// sheets cross along a closed square loop. Repeated passes must
+// contour_minimizing_displacement (engine/post_process/untangle.h) on two sheets that pass through
+// each other: a flat sheet at z = 0 and a small pyramid under it whose tip pokes through, so that
+// the sheets cross along a closed square loop. Repeated passes must
 //   - move every vertex by at most the step,
 //   - push the pyramid's crossing vertices down and the sheet's up (the contour shrinks: a sign
 //     error in G would push the tip further through and grow the loop),
@@ -10,8 +10,8 @@
 
 #include <QtTest>
 
-#include "engine/arrange/untangle.h"
 #include "engine/core/mesh_topology.h"
+#include "engine/post_process/untangle.h"
 #include "engine/quality/exact_intersections.h"
 
 using namespace garment;

@@ -1,10 +1,10 @@
-#include "engine/arrange/session.h"
+#include "engine/session/session.h"
 
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
-#include "engine/arrange/post_process.h"
+#include "engine/post_process/post_process.h"
 #include "engine/seeding/seed_shape.h"
 #include "engine/solver/chebyshev_solver.h"
 
@@ -361,9 +361,12 @@ void Session::accept_batch() {
 void Session::run_post_process(SessionObserver* observer) {
   int iterations = 0;
   ForwardingObserver forward(observer);
+  std::vector<std::vector<int>> layers{state_.report.seed.pieces()};
+  for (const BatchRecord& batch : state_.report.batches)
+    layers.push_back(batch.pieces);
   const PostProcessReport report =
-      post_process(*context_, state_.report, state_.arranged, state_.positions, &forward,
-                   live_snapshots(observer, Phase::PostProcess, &iterations));
+      post_process(*context_, layers, state_.report.work, state_.arranged, state_.positions,
+                   &forward, live_snapshots(observer, Phase::PostProcess, &iterations));
   record_phase({Phase::PostProcess, -1, 0, report.iterations, report.work, report.seconds});
   state_.report.post_process = report;
   state_.phase = Phase::Done;

@@ -1,4 +1,4 @@
-#include "engine/arrange/termination.h"
+#include "engine/termination/termination.h"
 
 #include <map>
 

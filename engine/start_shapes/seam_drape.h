@@ -41,9 +41,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "engine/arrange/alignment.h"
 #include "engine/body/body_landmarks.h"
 #include "engine/pattern/garment_mesh.h"
+#include "engine/start_shapes/alignment.h"
 
 namespace garment {
 

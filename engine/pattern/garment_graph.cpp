@@ -1,4 +1,4 @@
-#include "engine/arrange/garment_graph.h"
+#include "engine/pattern/garment_graph.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-// wrap_round_arm (engine/arrange/limb_wrap.h) on gc_0007's left sleeve and cuff, on the
+// wrap_round_arm (engine/start_shapes/limb_wrap.h) on gc_0007's left sleeve and cuff, on the
 // f_smpl body. The bodice's armholes are laid as half rings round the body's left arm axis (front
 // half in front, back half behind, 9 cm out, 4 cm up from the armpit, running round the way the
 // file's flat placement has them), where an arranged bodice has them. gc_0007's sleeve is cut
@@ -23,12 +23,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "engine/arrange/limb_wrap.h"
 #include "engine/body/body.h"
 #include "engine/core/mesh_geometry.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/pattern.h"
 #include "engine/quality/flat_placement.h"
+#include "engine/start_shapes/limb_wrap.h"
 #include "support/test_paths.h"
 
 using namespace garment;

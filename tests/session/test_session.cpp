@@ -1,4 +1,4 @@
-// The arrangement session (engine/arrange/session.h) as a state machine, on a real pattern
+// The arrangement session (engine/session/session.h) as a state machine, on a real pattern
 // (tests/data/patterns/gc_0012_specification.json: a skirt in two panels with a two-part
 // waistband) and the bundled body, with small iteration budgets and one piece per batch so that
 // several batches run in a few seconds:
@@ -19,8 +19,8 @@
 #include <set>
 #include <thread>
 
-#include "engine/arrange/session.h"
 #include "engine/body/default_body.h"
+#include "engine/session/session.h"
 #include "support/test_paths.h"
 
 using namespace garment;

@@ -15,8 +15,6 @@
 
 namespace garment {
 
-struct SessionReport;
-
 struct PostProcessReport {
   int iterations = 0;  // solver iterations, the untangling's included
   // Cloth-cloth contacts (edge, triangle) when the last untangling began (a creased garment is
@@ -28,9 +26,11 @@ struct PostProcessReport {
   double final_energy = 0.0;
 };
 
-// arranged: mask over pieces (waiting pieces stay out of the simulation). report: the batches (the
-// seed first) give the layering.
-PostProcessReport post_process(ArrangementContext& context, const SessionReport& report,
+// arranged: mask over pieces (waiting pieces stay out of the simulation). layers: the pieces of
+// each batch in arrangement order, the seed's first. work_before: the session's work so far,
+// which counts against parameters.post_process_work.
+PostProcessReport post_process(ArrangementContext& context,
+                               const std::vector<std::vector<int>>& layers, double work_before,
                                const std::vector<bool>& arranged, Eigen::MatrixX3d& positions,
                                Observer* observer, const IterateCallback& on_iterate = {});
 

@@ -1,5 +1,5 @@
-// find_leg_tubes (engine/arrange/leg_tubes.h) on real GarmentCode patterns in the placement their
-// files give (flat panels in front of and behind the body, legs on their own sides):
+// find_leg_tubes (engine/post_process/leg_tubes.h) on real GarmentCode patterns in the placement
+// their files give (flat panels in front of and behind the body, legs on their own sides):
 //   - trousers (gc_0005): every vertex below the crotch clearance is in a tube, none above it,
 //     and each tube's side is its pieces' side (pant_*_r: the body's right, x < 0), which the
 //     function reads from positions alone;
@@ -25,10 +25,10 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/arrange/garment_graph.h"
-#include "engine/arrange/leg_tubes.h"
+#include "engine/pattern/garment_graph.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/pattern.h"
+#include "engine/post_process/leg_tubes.h"
 #include "engine/quality/flat_placement.h"
 #include "support/test_paths.h"
 

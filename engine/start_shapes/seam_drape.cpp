@@ -1,4 +1,4 @@
-#include "engine/arrange/seam_drape.h"
+#include "engine/start_shapes/seam_drape.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

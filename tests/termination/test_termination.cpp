@@ -1,4 +1,4 @@
-// Termination checks (engine/arrange/termination.h, paper §7.4, Eq. 13) on the patterns of
+// Termination checks (engine/termination/termination.h, paper §7.4, Eq. 13) on the patterns of
 // tests/data: the rest shape is flat and unstretched; a uniform scaling is the same strain
 // everywhere; a piece turned over makes the seams to its partners fold back (θ_out = −1) and
 // nothing else; on randomly crumpled states θ_in and s_max equal values computed here from the
@@ -11,8 +11,8 @@
 #include <random>
 #include <set>
 
-#include "engine/arrange/termination.h"
 #include "engine/pattern/garment_mesh.h"
+#include "engine/termination/termination.h"
 #include "support/test_paths.h"
 
 using namespace garment;

@@ -20,11 +20,11 @@
 
 #include "engine/arrange/arrangement_parameters.h"
 #include "engine/arrange/batch_arrangement.h"
-#include "engine/arrange/post_process.h"
-#include "engine/arrange/termination.h"
 #include "engine/core/observer.h"
+#include "engine/post_process/post_process.h"
 #include "engine/seeding/scene.h"
 #include "engine/seeding/seed_choice.h"
+#include "engine/termination/termination.h"
 
 namespace garment {
 

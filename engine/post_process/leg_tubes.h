@@ -19,8 +19,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "engine/arrange/garment_graph.h"
 #include "engine/body/body_landmarks.h"
+#include "engine/pattern/garment_graph.h"
 #include "engine/pattern/garment_mesh.h"
 
 namespace garment {

@@ -1,4 +1,4 @@
-#include "engine/arrange/untangle.h"
+#include "engine/post_process/untangle.h"
 
 #include <algorithm>
 #include <array>
