@@ -39,6 +39,13 @@ std::string quality_json(const Garment& garment, const GarmentMetrics& metrics,
   json["misplaced"] = nlohmann::json::array();
   for (const Misplacement& entry : metrics.misplaced)
     json["misplaced"].push_back({{"piece", name(entry.piece)}, {"problem", entry.problem}});
+  // Per piece, the share of its area whose outside faces the body (inside out past one half).
+  if (!metrics.piece_area_facing_body.empty()) {
+    nlohmann::json facing = nlohmann::json::object();
+    for (std::size_t piece = 0; piece < metrics.piece_area_facing_body.size(); ++piece)
+      facing[name(static_cast<int>(piece))] = metrics.piece_area_facing_body[piece];
+    json["piece_area_facing_body"] = facing;
+  }
   json["fails"] = nlohmann::json::array();
   for (const QualityFailure& failure : verdict.failures) {
     nlohmann::json pieces = nlohmann::json::array();

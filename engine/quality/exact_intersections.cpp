@@ -153,6 +153,11 @@ double BodySurfaceQueries::distance_to_surface(const Eigen::Vector3d& point) con
   return std::sqrt(impl_->tree.squared_distance(Point(point.x(), point.y(), point.z())));
 }
 
+Eigen::Vector3d BodySurfaceQueries::closest_point(const Eigen::Vector3d& point) const {
+  const Point nearest = impl_->tree.closest_point(Point(point.x(), point.y(), point.z()));
+  return {CGAL::to_double(nearest.x()), CGAL::to_double(nearest.y()), CGAL::to_double(nearest.z())};
+}
+
 std::vector<Eigen::Vector2i> edge_triangle_contacts(const Eigen::MatrixX3d& positions,
                                                     const Eigen::MatrixX2i& edges,
                                                     const Eigen::MatrixX3i& triangles,

@@ -31,6 +31,8 @@ class BodySurfaceQueries {
   // (CGAL::Side_of_triangle_mesh). A point on the surface is not strictly inside.
   bool strictly_inside(const Eigen::Vector3d& point) const;
   double distance_to_surface(const Eigen::Vector3d& point) const;
+  // The point of the surface nearest to `point` (a floating-point construction).
+  Eigen::Vector3d closest_point(const Eigen::Vector3d& point) const;
 
  private:
   struct Impl;

@@ -204,6 +204,8 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
         metrics.tightest_opening = std::move(fit);
     }
     metrics.misplaced = find_misplaced_pieces(garment_, positions, regions_, body_->axes);
+    metrics.piece_area_facing_body = piece_area_facing_body(garment_, positions, body_->surface);
+    add_inside_out_pieces(garment_, metrics.piece_area_facing_body, metrics.misplaced);
     metrics.seconds_body = seconds_since(body_start);
   }
 

@@ -22,7 +22,7 @@
 //                         (a dart's mouth is a seam too: open, it is a hole in the garment)
 //   tightest opening      the garment's opening (a boundary loop after welding) that the body
 //                         inside it stretches most: girth of the body inside / rest length − 1
-//   misplaced             piece_placement.h
+//   misplaced             piece_placement.h, and pieces turned inside out (piece_facing.h)
 
 #include <Eigen/Core>
 #include <vector>
@@ -34,6 +34,7 @@
 #include "engine/quality/exact_intersections.h"
 #include "engine/quality/expected_region.h"
 #include "engine/quality/opening_fit.h"
+#include "engine/quality/piece_facing.h"
 #include "engine/quality/piece_placement.h"
 
 namespace garment {
@@ -97,6 +98,7 @@ struct GarmentMetrics {
   std::vector<double> dart_max_gap_m;    // per Garment::darts entry
 
   std::vector<Misplacement> misplaced;
+  std::vector<double> piece_area_facing_body;  // per piece (piece_facing.h); empty without a body
 
   double seconds_body = 0.0;           // inside vertices and body crossings
   double seconds_self_crossing = 0.0;  // cloth-cloth contacts

@@ -1,0 +1,67 @@
+#include "engine/quality/piece_facing.h"
+
+#include <tbb/parallel_for.h>
+
+#include <string>
+
+#include "engine/core/mesh_geometry.h"
+
+namespace garment {
+
+std::vector<double> piece_area_facing_body(const Garment& garment,
+                                           const Eigen::MatrixX3d& positions,
+                                           const BodySurfaceQueries& body) {
+  const int triangle_count = garment.triangle_count();
+  // Signed area towards the body per triangle: +area when its outside faces the body.
+  std::vector<double> facing(static_cast<std::size_t>(triangle_count), 0.0);
+  std::vector<double> area(static_cast<std::size_t>(triangle_count), 0.0);
+  tbb::parallel_for(0, triangle_count, [&](int t) {
+    const Eigen::Vector3d a = positions.row(garment.triangles(t, 0));
+    const Eigen::Vector3d b = positions.row(garment.triangles(t, 1));
+    const Eigen::Vector3d c = positions.row(garment.triangles(t, 2));
+    const Eigen::Vector3d doubled_normal = (b - a).cross(c - a);
+    const Eigen::Vector3d centroid = (a + b + c) / 3.0;
+    const Eigen::Vector3d away_from_body = centroid - body.closest_point(centroid);
+    area[t] = 0.5 * doubled_normal.norm();
+    if (doubled_normal.dot(away_from_body) < 0.0) facing[t] = area[t];
+  });
+  // Summed in triangle order: the same result on any number of threads.
+  std::vector<double> facing_area(garment.pieces.size(), 0.0), total(garment.pieces.size(), 0.0);
+  for (int t = 0; t < triangle_count; ++t) {
+    facing_area[garment.triangle_piece(t)] += facing[t];
+    total[garment.triangle_piece(t)] += area[t];
+  }
+  std::vector<double> share(garment.pieces.size(), 0.0);
+  for (std::size_t p = 0; p < share.size(); ++p)
+    if (total[p] > 0.0) share[p] = facing_area[p] / total[p];
+  return share;
+}
+
+bool folds_over_by_design(std::string_view panel_name) {
+  std::size_t start = 0;
+  while (start <= panel_name.size()) {
+    const std::size_t end = std::min(panel_name.find('_', start), panel_name.size());
+    const std::string_view word = panel_name.substr(start, end - start);
+    if (word == "collar" || word == "lapel") return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+void add_inside_out_pieces(const Garment& garment, const std::vector<double>& area_facing_body,
+                           std::vector<Misplacement>& misplaced) {
+  std::vector<Misplacement> merged;
+  auto listed = misplaced.begin();
+  for (int piece = 0; piece < static_cast<int>(area_facing_body.size()); ++piece) {
+    const bool inside_out = area_facing_body[piece] > kInsideOutAreaShare &&
+                            !folds_over_by_design(garment.pieces[piece].name);
+    const bool was_listed = listed != misplaced.end() && listed->piece == piece;
+    if (!inside_out && !was_listed) continue;
+    Misplacement entry = was_listed ? std::move(*listed++) : Misplacement{piece, ""};
+    if (inside_out) entry.problem += entry.problem.empty() ? "inside out" : ", inside out";
+    merged.push_back(std::move(entry));
+  }
+  misplaced = std::move(merged);
+}
+
+}  // namespace garment
