@@ -2,9 +2,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <string>
 
-#include "engine/core/mesh_geometry.h"
 
 namespace garment {
 
@@ -12,9 +12,10 @@ std::vector<double> piece_area_facing_body(const Garment& garment,
                                            const Eigen::MatrixX3d& positions,
                                            const BodySurfaceQueries& body) {
   const int triangle_count = garment.triangle_count();
-  // Signed area towards the body per triangle: +area when its outside faces the body.
-  std::vector<double> facing(static_cast<std::size_t>(triangle_count), 0.0);
+  // Per triangle: its area, whether its outside faces the body, whether it is near the body.
   std::vector<double> area(static_cast<std::size_t>(triangle_count), 0.0);
+  std::vector<char> facing(static_cast<std::size_t>(triangle_count), 0);
+  std::vector<char> near(static_cast<std::size_t>(triangle_count), 0);
   tbb::parallel_for(0, triangle_count, [&](int t) {
     const Eigen::Vector3d a = positions.row(garment.triangles(t, 0));
     const Eigen::Vector3d b = positions.row(garment.triangles(t, 1));
@@ -23,17 +24,25 @@ std::vector<double> piece_area_facing_body(const Garment& garment,
     const Eigen::Vector3d centroid = (a + b + c) / 3.0;
     const Eigen::Vector3d away_from_body = centroid - body.closest_point(centroid);
     area[t] = 0.5 * doubled_normal.norm();
-    if (doubled_normal.dot(away_from_body) < 0.0) facing[t] = area[t];
+    facing[t] = doubled_normal.dot(away_from_body) < 0.0;
+    near[t] = away_from_body.norm() <= kFacingReach;
   });
   // Summed in triangle order: the same result on any number of threads.
-  std::vector<double> facing_area(garment.pieces.size(), 0.0), total(garment.pieces.size(), 0.0);
+  const std::size_t piece_count = garment.pieces.size();
+  std::vector<double> whole(piece_count, 0.0), whole_facing(piece_count, 0.0);
+  std::vector<double> close(piece_count, 0.0), close_facing(piece_count, 0.0);
   for (int t = 0; t < triangle_count; ++t) {
-    facing_area[garment.triangle_piece(t)] += facing[t];
-    total[garment.triangle_piece(t)] += area[t];
+    const int piece = garment.triangle_piece(t);
+    whole[piece] += area[t];
+    if (facing[t]) whole_facing[piece] += area[t];
+    if (!near[t]) continue;
+    close[piece] += area[t];
+    if (facing[t]) close_facing[piece] += area[t];
   }
-  std::vector<double> share(garment.pieces.size(), 0.0);
-  for (std::size_t p = 0; p < share.size(); ++p)
-    if (total[p] > 0.0) share[p] = facing_area[p] / total[p];
+  std::vector<double> share(piece_count, 0.0);
+  for (std::size_t p = 0; p < piece_count; ++p)
+    if (whole[p] > 0.0 && close[p] > 0.0)
+      share[p] = std::min(whole_facing[p] / whole[p], close_facing[p] / close[p]);
   return share;
 }
 
