@@ -105,6 +105,12 @@ struct ArrangementParameters {
   // 500 patterns that failed on strain alone, 53 clean and 17 seam gaps at 3×, 56 and 4 at 6×, 56
   // and 1 at 10×; all 500: 216 clean at 6×, 204 at 10×.
   double post_process_sewing_factor = 6.0;
+  // The darts' zero-length springs (energy.dart_stiffness) are scaled by this in the post-process,
+  // as the seams by the factor above. At 1 darts pulled 6x weaker than seams, and 13 of the 500
+  // garments failed on dart mouths 5.5-16.9 mm open alone. First pass on the even half (tuning
+  // half): 205 clean at 1, 206 at 3, 207 at 6 (gc_0124, 0154, 0172, 0464 gained; gc_0008 and
+  // gc_0418 lost, by 2 body-crossing and 3 cloth-crossing edges).
+  double post_process_dart_factor = 6.0;
   double post_process_repulsion_factor = 1.0;
   double post_process_gravity_factor = 1.0;
   // Fraction of the stretch stiffness a compressed spring keeps in the post-process (the

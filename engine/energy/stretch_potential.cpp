@@ -79,6 +79,12 @@ void StretchPotential::set_stiffness_scale(double scale) {
   changed();
 }
 
+void StretchPotential::set_dart_stiffness_scale(double scale) {
+  if (!(scale > 0.0)) throw std::invalid_argument("StretchPotential: dart stiffness scale <= 0");
+  dart_scale_ = scale;
+  changed();
+}
+
 void StretchPotential::set_compression_factor(double factor) {
   if (!(factor > 0.0 && factor <= 1.0))
     throw std::invalid_argument("StretchPotential: compression factor outside (0, 1]");
@@ -99,7 +105,7 @@ void StretchPotential::bind_elements(const ActiveSet& active) {
   for (const Spring& spring : springs_) {
     if (!active.includes({spring.i, spring.j})) continue;
     Spring bound = spring;
-    bound.stiffness *= scale_;
+    bound.stiffness *= spring.rest_length == 0.0 ? scale_ * dart_scale_ : scale_;
     if (bound.i > bound.j) std::swap(bound.i, bound.j);
     active_.push_back(bound);
   }

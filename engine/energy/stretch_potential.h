@@ -41,6 +41,9 @@ class StretchPotential : public Potential {
 
   // Scales every spring's stiffness relative to the values given at construction.
   void set_stiffness_scale(double scale);
+  // Scales the zero-length springs (the darts) once more, on top of set_stiffness_scale: the
+  // post-process pulls darts shut as hard as it pulls seams (arrangement_parameters.h).
+  void set_dart_stiffness_scale(double scale);
   // Compressed springs keep this fraction of k, in (0, 1].
   void set_compression_factor(double factor);
   double compression_factor() const { return compression_; }
@@ -73,6 +76,7 @@ class StretchPotential : public Potential {
   std::vector<Spring> springs_;  // all, at the construction stiffness
   std::vector<Spring> active_;   // bound, stiffness scaled
   double scale_ = 1.0;
+  double dart_scale_ = 1.0;
   double compression_ = 1.0;
   double limit_strain_ = 0.0;
   double limit_factor_ = 1.0;

@@ -83,6 +83,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_extra_iterations", p.post_process_extra_iterations);
   visit("post_process_step", p.post_process_step);
   visit("post_process_sewing_factor", p.post_process_sewing_factor);
+  visit("post_process_dart_factor", p.post_process_dart_factor);
   visit("post_process_repulsion_factor", p.post_process_repulsion_factor);
   visit("post_process_gravity_factor", p.post_process_gravity_factor);
   visit("post_process_compression_factor", p.post_process_compression_factor);
@@ -234,6 +235,7 @@ const std::map<std::string_view, Range>& parameter_ranges() {
       {"post_process_extra_iterations", at_least(0, kIterations, "iterations")},
       {"post_process_step", above(0, 1, "m")},
       {"post_process_sewing_factor", at_least(0, kFactor)},
+      {"post_process_dart_factor", above(0, kFactor)},
       {"post_process_repulsion_factor", at_least(0, kFactor)},
       {"post_process_gravity_factor", at_least(0, kFactor)},
       {"post_process_compression_factor", above(0, 1, "a fraction of the stiffness")},

@@ -210,6 +210,7 @@ PostProcessReport post_process(ArrangementContext& context,
   context.stretch->set_strain_limit(parameters.post_process_strain_limit,
                                     parameters.post_process_strain_limit_factor);
   context.stretch->set_compression_factor(parameters.post_process_compression_factor);
+  context.stretch->set_dart_stiffness_scale(parameters.post_process_dart_factor);
   const MeshEdges& mesh = context.mesh;
   Objective objective(active);
   objective.add(context.stretch)
@@ -329,6 +330,7 @@ PostProcessReport post_process(ArrangementContext& context,
   context.body_repulsion->set_buffer(energy.repulsion_buffer);
   context.stretch->clear_strain_limit();
   context.stretch->set_compression_factor(energy.stretch_compression_factor);
+  context.stretch->set_dart_stiffness_scale(1.0);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -215,6 +215,29 @@ class EnergyGradientsTest : public QObject {
     QVERIFY_THROWS_EXCEPTION(std::invalid_argument, limited->set_strain_limit(0.1, 0.5));
   }
 
+  void stretchDartScale() {
+    // The post-process pulls darts shut harder (post_process_dart_factor): scaling the darts by 6
+    // scales only the zero-length springs' energy, on top of the overall scale, and the gradient
+    // and diagonal stay exact for them.
+    auto scaled = std::make_shared<StretchPotential>(garment_, 1000.0, 500.0);
+    scaled->set_stiffness_scale(2.0);
+    scaled->set_dart_stiffness_scale(6.0);
+    const FiniteDifferenceCheck general = check(scaled, active_, state_);
+    QVERIFY(general.gradient_norm > 0.0);
+    QVERIFY(general.gradient_error <= 1e-5);
+    QVERIFY(general.max_diagonal_deficit <= 1e-4 * general.max_fd_diagonal);
+    auto plain = std::make_shared<StretchPotential>(garment_, 1000.0, 500.0);
+    auto darts_only = std::make_shared<StretchPotential>(garment_, 0.0, 500.0);
+    const Eigen::MatrixX3d stretched = random_state(garment_, 1.05, 1e-3, 13);
+    const double darts = energy_of(darts_only, stretched);
+    const double mesh = energy_of(plain, stretched) - darts;
+    QVERIFY(darts > 0.0 && mesh > 0.0);
+    const double expected = 2.0 * mesh + 12.0 * darts;
+    QVERIFY2(std::abs(energy_of(scaled, stretched) - expected) <= 1e-9 * expected,
+             qPrintable(QString("%1 against %2").arg(energy_of(scaled, stretched)).arg(expected)));
+    QVERIFY_THROWS_EXCEPTION(std::invalid_argument, scaled->set_dart_stiffness_scale(0.0));
+  }
+
   void bending() {
     std::vector<BendingStencil> stencils = interior_bending_stencils(garment_);
     const std::vector<BendingStencil> seams = seam_bending_stencils(garment_);
