@@ -10,8 +10,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -154,6 +156,11 @@ Outcome run_job(const Job& job, const std::filesystem::path& output, double time
       ::dup2(descriptor, STDERR_FILENO);
     }
     ::execv(exe.c_str(), argv.data());
+    // The job's log is the only channel left: the batch reports its first line (a binary replaced
+    // while the batch runs, say). write() is async-signal-safe; strerror reads glibc's table.
+    const char* reason = ::strerror(errno);
+    for (const char* part : {"cannot start ", exe.c_str(), ": ", reason, "\n"})
+      if (::write(STDERR_FILENO, part, std::strlen(part)) < 0) break;
     ::_exit(127);
   }
   int status = 0;
@@ -188,6 +195,7 @@ Outcome run_job(const Job& job, const std::filesystem::path& output, double time
     outcome.status = "error";
     std::ifstream in(log);
     std::getline(in, outcome.message);
+    if (outcome.message.empty()) outcome.message = "exit code " + std::to_string(code);
   }
   nlohmann::json record{{"name", outcome.name},
                         {"body", outcome.body},
