@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <string>
 
-
 namespace garment {
 
 std::vector<double> piece_area_facing_body(const Garment& garment,
