@@ -144,9 +144,10 @@ class GarmentMetricsTest : public QObject {
   void two_pieces_crossing() {
     const Garment garment = tube_and_flap();
     Eigen::MatrixX3d positions = clean_state(garment);
-    // The flap turned edge-on, sticking through the front wall (z 0.17 → 0.37), clear of the body.
-    place_flat(garment, kFlap, Eigen::Vector3d(0.013, 1.1, 0.17), Eigen::Vector3d::UnitZ(),
-               Eigen::Vector3d::UnitY(), positions);
+    // The flap turned edge-on, sticking through the front wall (z 0.17 → 0.37), clear of the body,
+    // its outside (+x: across × up) facing away from the body's axis.
+    place_flat(garment, kFlap, Eigen::Vector3d(0.013, 1.3, 0.17), Eigen::Vector3d::UnitZ(),
+               -Eigen::Vector3d::UnitY(), positions);
     const GarmentMetrics metrics = measure(garment, positions);
     QVERIFY(metrics.self_crossing_edges > 0);
     QCOMPARE(metrics.self_crossing_pairs.size(), std::size_t{1});
@@ -300,12 +301,13 @@ class GarmentMetricsTest : public QObject {
     place_around(shoulder + 0.02 * along);
     QVERIFY(measure_garment(garment, positions, &reference, regions).misplaced.empty());
 
-    // The same sleeve on the right arm (mirrored): wrong side, and not on its own arm.
+    // The same sleeve on the right arm (mirrored): wrong side, not on its own arm, and, a mirror
+    // image, with its outside facing the arm.
     positions.col(0) *= -1.0;
     auto misplaced = measure_garment(garment, positions, &reference, regions).misplaced;
     QCOMPARE(misplaced.size(), std::size_t{1});
     QCOMPARE(QString::fromStdString(misplaced[0].problem),
-             QString("on the body's right, off the left arm"));
+             QString("on the body's right, off the left arm, inside out"));
 
     // Flat on the chest, left of centre: off the arm.
     place_flat(garment, 0, Eigen::Vector3d(0.02, 1.1, 0.2), Eigen::Vector3d::UnitX(),
