@@ -3,9 +3,8 @@
 #include <regex>
 
 namespace garment {
-namespace {
 
-std::vector<std::string_view> split_words(std::string_view name) {
+std::vector<std::string_view> panel_name_words(std::string_view name) {
   std::vector<std::string_view> words;
   std::size_t start = 0;
   while (start <= name.size()) {
@@ -15,6 +14,8 @@ std::vector<std::string_view> split_words(std::string_view name) {
   }
   return words;
 }
+
+namespace {
 
 void set_side(ExpectedRegion& region, bool left) {
   region.left_right = left ? LeftRight::Left : LeftRight::Right;
@@ -54,7 +55,7 @@ ExpectedRegion expected_region_from_name(std::string_view name) {
     return region;
   }
   bool front = false, back = false, left = false, right = false;
-  const std::vector<std::string_view> words = split_words(name);
+  const std::vector<std::string_view> words = panel_name_words(name);
   for (std::string_view word : words) {
     front = front || word == "front" || word == "ftorso" || word == "f";
     back = back || word == "back" || word == "btorso" || word == "b";

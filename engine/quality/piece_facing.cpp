@@ -3,7 +3,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <string>
 
 namespace garment {
 
@@ -46,14 +45,9 @@ std::vector<double> piece_area_facing_body(const Garment& garment,
 }
 
 bool folds_over_by_design(std::string_view panel_name) {
-  std::size_t start = 0;
-  while (start <= panel_name.size()) {
-    const std::size_t end = std::min(panel_name.find('_', start), panel_name.size());
-    const std::string_view word = panel_name.substr(start, end - start);
-    if (word == "collar" || word == "lapel") return true;
-    start = end + 1;
-  }
-  return false;
+  const std::vector<std::string_view> words = panel_name_words(panel_name);
+  return std::any_of(words.begin(), words.end(),
+                     [](std::string_view word) { return word == "collar" || word == "lapel"; });
 }
 
 void add_inside_out_pieces(const Garment& garment, const std::vector<double>& area_facing_body,
