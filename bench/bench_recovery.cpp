@@ -44,11 +44,9 @@ Outcome arrange(const std::filesystem::path& pattern, const std::filesystem::pat
   auto first_pass = std::make_shared<garment::Session>(scene);
   first_pass->run();
   const garment::BodyReference reference(scene->body->mesh);
-  const garment::GarmentChecker checker(*scene->garment, &reference,
-                                        garment::expected_regions_from_names(*scene->garment));
   Outcome outcome;
   outcome.first_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  const garment::RecoveryResult result = garment::recover(first_pass, checker, settings);
+  const garment::RecoveryResult result = garment::recover(first_pass, &reference, settings);
   outcome.first_clean = result.attempts.front().verdict.ok();
   outcome.clean = result.verdict.ok();
   outcome.cannot_fit = result.cannot_fit.has_value();

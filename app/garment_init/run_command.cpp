@@ -137,17 +137,18 @@ int run_command(const std::vector<std::string>& args) {
   // A garment that fails its verdict is arranged again, from the batch at fault (--attempts 1:
   // the first pass as it is).
   const BodyReference reference(scene->body->mesh);
-  const GarmentChecker checker(garment, &reference, expected_regions_from_names(garment));
-  const RecoveryResult recovered = recover(first_pass, checker, recovery);
+  const RecoveryResult recovered = recover(first_pass, &reference, recovery);
   const Session& chosen = *recovered.session;
+  const Garment& chosen_garment = *chosen.scene().garment;  // a remesh has its own
   const QualityVerdict& verdict = recovered.verdict;
   // Every output is complete on disk before the first replaces its destination: a failure or a
   // signal up to here leaves all of them as they were.
   AtomicFileSet outputs;
-  outputs.stage(*output, format_garment_obj(garment, chosen.positions()));
+  outputs.stage(*output, format_garment_obj(chosen_garment, chosen.positions()));
   if (glb)
     outputs.stage(
-        *glb, format_glb(garment_glb_meshes(garment, chosen.positions(), scene->body.get()), *glb));
+        *glb, format_glb(garment_glb_meshes(chosen_garment, chosen.positions(), scene->body.get()),
+                         *glb));
   if (report)
     outputs.stage(*report,
                   session_report_json(chosen, recovered.metrics, verdict, &recovered) + "\n");
@@ -157,8 +158,9 @@ int run_command(const std::vector<std::string>& args) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!line.has("--quiet")) {
     std::printf("%s: %zu pieces, %d vertices, %zu batches, seed: %s\n",
-                garment.pattern.source.c_str(), garment.pieces.size(), garment.vertex_count(),
-                chosen.report().batches.size(), chosen.report().seed.reason.c_str());
+                chosen_garment.pattern.source.c_str(), chosen_garment.pieces.size(),
+                chosen_garment.vertex_count(), chosen.report().batches.size(),
+                chosen.report().seed.reason.c_str());
     if (recovered.attempts.size() > 1) {
       const AttemptRecord& best = recovered.attempts[recovered.chosen];
       std::printf("%zu attempts%s; kept %s\n", recovered.attempts.size(),

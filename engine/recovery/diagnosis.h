@@ -8,6 +8,9 @@
 //   folds only, each by a little)      iterations
 //   pieces misplaced, or a failure   → the classifier's next seed (seed_candidates)
 //   in the seed's pieces
+//   any failure                     → the whole arrangement again on the pattern meshed finer
+//                                     or coarser (kRemeshRatios): the arrangement is sensitive to
+//                                     its start, and another mesh starts every batch differently
 //   a batch tangled (penetration,   → that batch again with another start: stiffer bending,
 //   folds, strain, misplaced)          longer solves, or the rigid fits instead of the draped and
 //                                     wrapped start shapes
@@ -33,9 +36,11 @@ enum class RecoveryActionKind {
   StiffenBending,  // from `resume_batch` on, bending twice as stiff
   LongerSolves,    // from `resume_batch` on, every step's iteration budget doubled
   RigidStart,      // from `resume_batch` on, rigid fits instead of the draped and wrapped starts
+  Remesh,          // start over on the pattern meshed at `edge_length`
 };
 
-// "reorder", "reseed", "settle_longer", "stiffen_bending", "longer_solves", "rigid_start".
+// "reorder", "reseed", "settle_longer", "stiffen_bending", "longer_solves", "rigid_start",
+// "remesh".
 const char* to_string(RecoveryActionKind kind);
 
 struct RecoveryAction {
@@ -46,6 +51,7 @@ struct RecoveryAction {
   std::vector<int> order;        // Reorder: pieces to arrange next, each in a batch of its own
   std::optional<SeedPlan> seed;  // Reseed
   std::string reason;            // one line: what and why, with piece names
+  double edge_length = 0.0;      // Remesh: the mesh's target edge length, metres
 
   // The same action on the same session: equal keys (the recovery tries each once).
   std::string key() const;
@@ -59,10 +65,15 @@ struct Diagnosis {
   std::vector<RecoveryAction> actions;  // in the order to try
 };
 
+// The remeshes' edge lengths, in the order to try them, as fractions of the first pass's.
+inline constexpr double kRemeshRatios[] = {0.8, 0.9, 1.1};
+
 // seeds: seed_candidates of the garment; the report's own seed is left out of the reseeds.
+// first_pass_edge_length: the first pass's mesh (metres); the remeshes are fractions of it, not of
+// the mesh of the session diagnosed, so that they do not compound.
 Diagnosis diagnose(const Garment& garment, const SessionReport& report,
                    const GarmentMetrics& metrics, const QualityVerdict& verdict,
-                   const std::vector<SeedPlan>& seeds);
+                   const std::vector<SeedPlan>& seeds, double first_pass_edge_length);
 
 // The session options an action gives, from those of the session it corrects.
 SessionOptions apply_action(const RecoveryAction& action, SessionOptions options);

@@ -7,6 +7,7 @@
 #include <exception>
 #include <thread>
 
+#include "engine/seeding/scene.h"
 #include "engine/seeding/seed_choice.h"
 
 namespace garment {
@@ -30,9 +31,14 @@ struct Attempt {
 };
 
 // What an action on `base` is likely to cost: the work `base` did from the checkpoint the action
-// resumes, twice that for the actions that double the iterations. Deterministic, so that which
+// resumes, twice that for the actions that double the iterations, and for a new mesh all of it in
+// proportion to the vertices (the square of the edge lengths' ratio). Deterministic, so that which
 // actions fit the budget does not depend on the machine.
 double estimated_work(const Session& base, const RecoveryAction& action) {
+  if (action.kind == RecoveryActionKind::Remesh) {
+    const double ratio = base.scene().garment->target_edge_length / action.edge_length;
+    return base.report().work * ratio * ratio;
+  }
   const double after =
       base.report().work - base.checkpoint_work(base.checkpoint_before_batch(action.resume_batch));
   const bool doubled = action.kind == RecoveryActionKind::SettleLonger ||
@@ -40,22 +46,31 @@ double estimated_work(const Session& base, const RecoveryAction& action) {
   return doubled ? 2.0 * after : after;
 }
 
-void run_attempt(const Session& base, const GarmentChecker& checker, Observer* observer,
+GarmentChecker make_checker(const Garment& garment, const BodyReference* body) {
+  return GarmentChecker(garment, body, expected_regions_from_names(garment));
+}
+
+void run_attempt(const Session& base, const BodyReference* body, Observer* observer,
                  Attempt& attempt) {
   const auto start = std::chrono::steady_clock::now();
   const RecoveryAction& action = attempt.action;
-  attempt.session =
-      std::make_shared<Session>(base, base.checkpoint_before_batch(action.resume_batch),
-                                apply_action(action, base.options()));
+  if (action.kind == RecoveryActionKind::Remesh)
+    attempt.session = std::make_shared<Session>(remesh_scene(base.scene(), action.edge_length),
+                                                apply_action(action, base.options()));
+  else
+    attempt.session =
+        std::make_shared<Session>(base, base.checkpoint_before_batch(action.resume_batch),
+                                  apply_action(action, base.options()));
   const double work_before = attempt.session->report().work;
   CancelOnly cancel(observer);
   attempt.session->run(&cancel);
-  attempt.metrics = checker.measure(attempt.session->positions());
+  const Garment& garment = *attempt.session->scene().garment;
+  attempt.metrics = make_checker(garment, body).measure(attempt.session->positions());
   AttemptRecord& record = attempt.record;
   record.action = to_string(action.kind);
   record.reason = action.reason;
   record.resume_batch = action.resume_batch;
-  record.verdict = judge_garment(*base.scene().garment, attempt.metrics);
+  record.verdict = judge_garment(garment, attempt.metrics);
   record.rank = rank_verdict(record.verdict);
   record.work = attempt.session->report().work - work_before;
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -63,13 +78,13 @@ void run_attempt(const Session& base, const GarmentChecker& checker, Observer* o
 
 }  // namespace
 
-RecoveryResult recover(std::shared_ptr<const Session> first_pass, const GarmentChecker& checker,
+RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyReference* body,
                        const RecoverySettings& settings, Observer* observer) {
   const Scene& scene = first_pass->scene();
   const Garment& garment = *scene.garment;
   RecoveryResult result;
   result.session = first_pass;
-  result.metrics = checker.measure(first_pass->positions());
+  result.metrics = make_checker(garment, body).measure(first_pass->positions());
   result.verdict = judge_garment(garment, result.metrics);
   AttemptRecord first;
   first.action = "first pass";
@@ -99,7 +114,8 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const GarmentC
       break;
     }
     const Diagnosis diagnosis =
-        diagnose(garment, result.session->report(), result.metrics, result.verdict, seeds);
+        diagnose(*result.session->scene().garment, result.session->report(), result.metrics,
+                 result.verdict, seeds, garment.target_edge_length);
     const int left = settings.attempts - static_cast<int>(result.attempts.size());
     std::vector<Attempt> round;
     double planned = used;
@@ -108,6 +124,9 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const GarmentC
       if (static_cast<int>(round.size()) >= std::min(left, concurrency)) break;
       const std::string key = action.key();
       if (std::find(tried.begin(), tried.end(), key) != tried.end()) continue;
+      if (std::find(settings.excluded.begin(), settings.excluded.end(), action.kind) !=
+          settings.excluded.end())
+        continue;
       // An action that would take the attempts past their work is passed over for a cheaper one.
       const double cost = estimated_work(*result.session, action);
       if (planned + cost > settings.work) {
@@ -130,7 +149,7 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const GarmentC
       threads.emplace_back([&, i] {
         try {
           tbb::task_arena arena(share);
-          arena.execute([&] { run_attempt(*result.session, checker, observer, round[i]); });
+          arena.execute([&] { run_attempt(*result.session, body, observer, round[i]); });
         } catch (...) {
           errors[i] = std::current_exception();
         }

@@ -31,6 +31,7 @@ struct RecoverySettings {
   // 164 s (gc_0424, 1 thread) against the 45 s the issue allows; 30 million is half of that.
   double work = 30e6;
   int threads = 0;  // threads to share among concurrent attempts; 0: TBB's default
+  std::vector<RecoveryActionKind> excluded;  // actions never taken (none: all may be)
 };
 
 struct AttemptRecord {
@@ -51,13 +52,16 @@ struct RecoveryResult {
   bool cancelled = false;
   // A design no arrangement can pass (cannot_fit.h): no attempt was made.
   std::optional<CannotFit> cannot_fit;
-  std::shared_ptr<const Session> session;  // the chosen attempt's
-  GarmentMetrics metrics;                  // of the chosen garment
+  // The chosen attempt's; its scene's garment is the one to write (a remesh has its own mesh).
+  std::shared_ptr<const Session> session;
+  GarmentMetrics metrics;  // of the chosen garment
   QualityVerdict verdict;
 };
 
-// first_pass: a session run to its end. checker: for the scene's garment and body.
-RecoveryResult recover(std::shared_ptr<const Session> first_pass, const GarmentChecker& checker,
+// first_pass: a session run to its end. body: the scene's body for the verdict (may be null: no
+// body metrics); each attempt's garment is measured against it with the expected regions its
+// pieces' names give (expected_regions_from_names).
+RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyReference* body,
                        const RecoverySettings& settings = {}, Observer* observer = nullptr);
 
 }  // namespace garment

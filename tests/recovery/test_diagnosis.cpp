@@ -5,6 +5,8 @@
 //   batch; crossing inside a batch → the two in batches of their own, in either order;
 // - misplaced pieces → every other seed the rules find, from the seed; never the seed in use;
 // - a near miss → first a longer settle, resumed at the post-process;
+// - any failure → the whole arrangement again at 16, 18 and 22 mm for a 20 mm first pass, whatever
+//   the mesh of the session diagnosed, before the actions of the failure's own kind;
 // - apply_action changes what the action says and nothing else.
 
 #include <QtTest>
@@ -42,6 +44,15 @@ QualityFailure failure(FailureKind kind, std::vector<int> pieces, double excess)
   return made;
 }
 
+// The first action of `kind` (nullptr if none).
+const RecoveryAction* first_of(const Diagnosis& diagnosis, RecoveryActionKind kind) {
+  for (const RecoveryAction& action : diagnosis.actions)
+    if (action.kind == kind) return &action;
+  return nullptr;
+}
+
+constexpr double kFirstPassEdge = 0.02;
+
 SeedPlan seed_of(std::vector<int> pieces, const char* location, const char* reason) {
   SeedPlan plan;
   plan.parts.push_back({std::move(pieces), location});
@@ -60,21 +71,23 @@ class DiagnosisTest : public QObject {
     metrics.self_crossing_pairs = {{1, 2, 4}, {1, 3, 12}};
     QualityVerdict verdict;
     verdict.failures.push_back(failure(FailureKind::SelfCrossing, {1, 2, 3}, 16));
-    const Diagnosis diagnosis = diagnose(garment, two_batches(), metrics, verdict, {});
+    const Diagnosis diagnosis =
+        diagnose(garment, two_batches(), metrics, verdict, {}, kFirstPassEdge);
 
     QCOMPARE(diagnosis.piece_batch, (std::vector<int>{-1, 0, 0, 1}));
     QCOMPARE(diagnosis.failure_batch, (std::vector<int>{0}));
-    QVERIFY(diagnosis.actions.size() >= 3);
+    const RecoveryAction* reorder = first_of(diagnosis, RecoveryActionKind::Reorder);
+    QVERIFY(reorder != nullptr);
+    const std::size_t first = reorder - diagnosis.actions.data();
+    QVERIFY(diagnosis.actions.size() >= first + 3);
     // The most crossed pair first: the pocket (batch 1) before the front (batch 0).
-    const RecoveryAction& first = diagnosis.actions[0];
-    QCOMPARE(first.kind, RecoveryActionKind::Reorder);
-    QCOMPARE(first.resume_batch, 0);
-    QCOMPARE(first.order, (std::vector<int>{3, 1}));
-    QVERIFY(first.reason.find("pocket arranged before skirt_front") != std::string::npos);
+    QCOMPARE(reorder->resume_batch, 0);
+    QCOMPARE(reorder->order, (std::vector<int>{3, 1}));
+    QVERIFY(reorder->reason.find("pocket arranged before skirt_front") != std::string::npos);
     // The pair inside batch 0: each in a batch of its own, both ways.
-    QCOMPARE(diagnosis.actions[1].order, (std::vector<int>{1, 2}));
-    QCOMPARE(diagnosis.actions[2].order, (std::vector<int>{2, 1}));
-    QCOMPARE(diagnosis.actions[2].resume_batch, 0);
+    QCOMPARE(diagnosis.actions[first + 1].order, (std::vector<int>{1, 2}));
+    QCOMPARE(diagnosis.actions[first + 2].order, (std::vector<int>{2, 1}));
+    QCOMPARE(diagnosis.actions[first + 2].resume_batch, 0);
     for (const RecoveryAction& action : diagnosis.actions) {
       QVERIFY(action.kind != RecoveryActionKind::Reseed);        // the seed is not at fault
       QVERIFY(action.kind != RecoveryActionKind::SettleLonger);  // 16 crossings: no near miss
@@ -91,18 +104,40 @@ class DiagnosisTest : public QObject {
     verdict.failures.push_back(failure(FailureKind::Misplaced, {3}, 1));
     const std::vector<SeedPlan> seeds = {seed_of({0}, "waist", "waist piece (classifier)"),
                                          seed_of({1, 2}, "pelvis_front", "pelvis pieces")};
-    const Diagnosis diagnosis = diagnose(garment, two_batches(), {}, verdict, seeds);
+    const Diagnosis diagnosis =
+        diagnose(garment, two_batches(), {}, verdict, seeds, kFirstPassEdge);
     const auto reseeds = std::count_if(
         diagnosis.actions.begin(), diagnosis.actions.end(),
         [](const RecoveryAction& action) { return action.kind == RecoveryActionKind::Reseed; });
     QCOMPARE(reseeds, 1);  // the seed in use is not tried again
-    const RecoveryAction& reseed = diagnosis.actions[0];
-    QCOMPARE(reseed.kind, RecoveryActionKind::Reseed);
-    QCOMPARE(reseed.resume_batch, -1);
-    QVERIFY(reseed.seed.has_value());
-    QCOMPARE(reseed.seed->pieces(), (std::vector<int>{1, 2}));
+    const RecoveryAction* reseed = first_of(diagnosis, RecoveryActionKind::Reseed);
+    QVERIFY(reseed != nullptr);
+    QCOMPARE(reseed->resume_batch, -1);
+    QVERIFY(reseed->seed.has_value());
+    QCOMPARE(reseed->seed->pieces(), (std::vector<int>{1, 2}));
     // Then other starts from the batch at fault (the pocket's).
     QCOMPARE(diagnosis.actions.back().resume_batch, 1);
+  }
+
+  void everyFailureTriesOtherMeshesFirst() {
+    Garment garment = four_pieces();
+    QualityVerdict verdict;
+    verdict.failures.push_back(failure(FailureKind::BodyPenetration, {3}, 40));
+    // A session on the 18 mm remesh is diagnosed: the meshes are still those of the first pass.
+    garment.target_edge_length = 0.018;
+    const Diagnosis diagnosis = diagnose(garment, two_batches(), {}, verdict, {}, kFirstPassEdge);
+    QVERIFY(diagnosis.actions.size() > 3);
+    const double expected[] = {0.016, 0.018, 0.022};
+    for (int i = 0; i < 3; ++i) {
+      const RecoveryAction& remesh = diagnosis.actions[i];
+      QCOMPARE(remesh.kind, RecoveryActionKind::Remesh);
+      QCOMPARE(remesh.resume_batch, -1);
+      QVERIFY(std::abs(remesh.edge_length - expected[i]) < 1e-12);
+    }
+    QVERIFY(diagnosis.actions[0].reason.find("16 mm") != std::string::npos);
+    QVERIFY(diagnosis.actions[0].key() != diagnosis.actions[1].key());
+    // Then the batch at fault (the pocket's) with other starts.
+    QCOMPARE(diagnosis.actions[3].resume_batch, 1);
   }
 
   void aNearMissSettlesLongerFirst() {
@@ -110,14 +145,14 @@ class DiagnosisTest : public QObject {
     QualityVerdict verdict;
     verdict.failures.push_back(failure(FailureKind::Strain, {1}, 1.5));
     verdict.failures.push_back(failure(FailureKind::SeamGap, {1, 2}, 0.8));
-    const Diagnosis diagnosis = diagnose(garment, two_batches(), {}, verdict, {});
+    const Diagnosis diagnosis = diagnose(garment, two_batches(), {}, verdict, {}, kFirstPassEdge);
     QVERIFY(!diagnosis.actions.empty());
     QCOMPARE(diagnosis.actions[0].kind, RecoveryActionKind::SettleLonger);
     QCOMPARE(diagnosis.actions[0].resume_batch, 2);  // the post-process, after both batches
 
     // Far past the strain limit it is no near miss.
     verdict.failures[0].excess = 30.0;
-    const Diagnosis far = diagnose(garment, two_batches(), {}, verdict, {});
+    const Diagnosis far = diagnose(garment, two_batches(), {}, verdict, {}, kFirstPassEdge);
     QVERIFY(far.actions.empty() || far.actions[0].kind != RecoveryActionKind::SettleLonger);
   }
 
@@ -151,6 +186,13 @@ class DiagnosisTest : public QObject {
     stiffer.kind = RecoveryActionKind::StiffenBending;
     QCOMPARE(apply_action(stiffer, options).arrangement.energy.bending_stiffness,
              2 * defaults.energy.bending_stiffness);
+
+    RecoveryAction remesh;  // the scene changes, not the options
+    remesh.kind = RecoveryActionKind::Remesh;
+    remesh.edge_length = 0.016;
+    const SessionOptions remeshed = apply_action(remesh, options);
+    QCOMPARE(remeshed.order, options.order);
+    QCOMPARE(remeshed.arrangement.post_process_iterations, defaults.post_process_iterations);
 
     RecoveryAction rigid;
     rigid.kind = RecoveryActionKind::RigidStart;

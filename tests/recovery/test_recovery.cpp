@@ -3,14 +3,18 @@
 // piece misplaced (the classifier's seed is checked, not assumed: the test fails if the first
 // pass ever comes out clean, as it would then test nothing).
 // - the diagnosis reseeds it and the attempt with another seed comes out clean; the attempt is
-//   chosen, and its session starts from the other seed;
+//   chosen, and its session starts from the other seed (the remeshes are excluded there: they
+//   come first and would spend the work);
 // - --attempts 1 (settings.attempts = 1) keeps the first pass and makes no attempt;
 // - the recovery is deterministic: two recoveries from the same first pass, attempts running
 //   concurrently on two threads, give the same positions to the bit;
 // - a recovery whose work budget is spent makes no attempt and says so;
 // - gc_0477 on f_smpl_average_A40 (of the judging half, used here as a fixed case, not for
 //   tuning): its left cuff's front crosses the seed; the diagnosis selects it alone, before the
-//   other cuff piece it was arranged after, and the garment comes out clean, the crossing gone.
+//   other cuff piece it was arranged after, and the garment comes out clean, the crossing gone
+//   (the remeshes excluded); with every action allowed a remesh comes first and rescues it: the
+//   garment chosen has its own mesh, finer or coarser than the first pass's, and it is the one
+//   measured clean.
 
 #include <tbb/global_control.h>
 #include <QtTest>
@@ -27,7 +31,6 @@ namespace {
 struct Fixture {
   std::shared_ptr<const Scene> scene;
   std::unique_ptr<BodyReference> body;
-  std::unique_ptr<GarmentChecker> checker;
   std::shared_ptr<const Session> first_pass;
 };
 
@@ -37,8 +40,28 @@ Fixture& fixture() {
     f.scene = load_scene(test::test_data("patterns/recovery/gc_0452_specification.json"),
                          test::test_data("bodies/f_smpl_average_A40.obj"));
     f.body = std::make_unique<BodyReference>(f.scene->body->mesh);
-    f.checker = std::make_unique<GarmentChecker>(*f.scene->garment, f.body.get(),
-                                                 expected_regions_from_names(*f.scene->garment));
+    auto session = std::make_shared<Session>(f.scene);
+    session->run();
+    f.first_pass = session;
+    return f;
+  }();
+  return made;
+}
+
+// gc_0477, its first pass on one thread (the thread count is part of the input).
+struct CuffFixture {
+  std::shared_ptr<const Scene> scene;
+  std::unique_ptr<BodyReference> body;
+  std::shared_ptr<const Session> first_pass;
+};
+
+const CuffFixture& cuff_fixture() {
+  static const CuffFixture made = [] {
+    const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    CuffFixture f;
+    f.scene = load_scene(test::test_data("patterns/recovery/gc_0477_specification.json"),
+                         test::test_data("bodies/f_smpl_average_A40.obj"));
+    f.body = std::make_unique<BodyReference>(f.scene->body->mesh);
     auto session = std::make_shared<Session>(f.scene);
     session->run();
     f.first_pass = session;
@@ -62,7 +85,8 @@ class RecoveryTest : public QObject {
     Fixture& f = fixture();
     RecoverySettings settings;
     settings.threads = 2;
-    const RecoveryResult result = recover(f.first_pass, *f.checker, settings);
+    settings.excluded = {RecoveryActionKind::Remesh};
+    const RecoveryResult result = recover(f.first_pass, f.body.get(), settings);
     QVERIFY(result.attempts.size() >= 2);
     const QualityVerdict& first = result.attempts[0].verdict;
     QVERIFY2(first.failed(FailureKind::Misplaced), "the first pass is expected to fail");
@@ -75,14 +99,16 @@ class RecoveryTest : public QObject {
     QVERIFY(chosen.work > 0.0);
     QVERIFY(result.session->report().seed.pieces() != f.first_pass->report().seed.pieces());
     // Its garment is the one measured clean.
-    QVERIFY(judge_garment(*f.scene->garment, f.checker->measure(result.session->positions())).ok());
+    const GarmentChecker checker(*f.scene->garment, f.body.get(),
+                                 expected_regions_from_names(*f.scene->garment));
+    QVERIFY(judge_garment(*f.scene->garment, checker.measure(result.session->positions())).ok());
   }
 
   void oneAttemptKeepsTheFirstPass() {
     Fixture& f = fixture();
     RecoverySettings settings;
     settings.attempts = 1;
-    const RecoveryResult result = recover(f.first_pass, *f.checker, settings);
+    const RecoveryResult result = recover(f.first_pass, f.body.get(), settings);
     QCOMPARE(result.attempts.size(), std::size_t(1));
     QCOMPARE(result.chosen, 0);
     QVERIFY(!result.verdict.ok());
@@ -94,8 +120,8 @@ class RecoveryTest : public QObject {
     Fixture& f = fixture();
     RecoverySettings settings;
     settings.threads = 2;
-    const RecoveryResult a = recover(f.first_pass, *f.checker, settings);
-    const RecoveryResult b = recover(f.first_pass, *f.checker, settings);
+    const RecoveryResult a = recover(f.first_pass, f.body.get(), settings);
+    const RecoveryResult b = recover(f.first_pass, f.body.get(), settings);
     QCOMPARE(a.attempts.size(), b.attempts.size());
     QCOMPARE(a.chosen, b.chosen);
     const Eigen::MatrixX3d& pa = a.session->positions();
@@ -108,14 +134,9 @@ class RecoveryTest : public QObject {
 
   void aReorderRemovesACrossing() {
     const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-    const std::shared_ptr<const Scene> scene =
-        load_scene(test::test_data("patterns/recovery/gc_0477_specification.json"),
-                   test::test_data("bodies/f_smpl_average_A40.obj"));
-    const Garment& garment = *scene->garment;
-    auto first_pass = std::make_shared<Session>(scene);
-    first_pass->run();
-    const BodyReference reference(scene->body->mesh);
-    const GarmentChecker checker(garment, &reference, expected_regions_from_names(garment));
+    const CuffFixture& f = cuff_fixture();
+    const Garment& garment = *f.scene->garment;
+    const GarmentChecker checker(garment, f.body.get(), expected_regions_from_names(garment));
     const int cuff = garment.pattern.panel_index("sl_left_cuff_f");
     QVERIFY(cuff >= 0);
     // Edges of the cuff crossing any other piece, or of any other piece crossing it.
@@ -126,12 +147,13 @@ class RecoveryTest : public QObject {
           count += pair.count;
       return count;
     };
-    QVERIFY2(crossing(checker.measure(first_pass->positions())) > 0,
+    QVERIFY2(crossing(checker.measure(f.first_pass->positions())) > 0,
              "the first pass is expected to cross the cuff with another piece");
 
     RecoverySettings settings;
     settings.threads = 1;
-    const RecoveryResult result = recover(first_pass, checker, settings);
+    settings.excluded = {RecoveryActionKind::Remesh};
+    const RecoveryResult result = recover(f.first_pass, f.body.get(), settings);
     QVERIFY(result.verdict.ok());
     const AttemptRecord& chosen = result.attempts[result.chosen];
     QCOMPARE(chosen.action, std::string("reorder"));
@@ -144,15 +166,37 @@ class RecoveryTest : public QObject {
           return batch.pieces.front() == cuff;
       return false;
     };
-    QVERIFY(!leads_its_batch(*first_pass));
+    QVERIFY(!leads_its_batch(*f.first_pass));
     QVERIFY(leads_its_batch(*result.session));
+  }
+
+  void aRemeshRescuesAGarment() {
+    const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    const CuffFixture& f = cuff_fixture();
+    RecoverySettings settings;
+    settings.threads = 1;
+    const RecoveryResult result = recover(f.first_pass, f.body.get(), settings);
+    QVERIFY2(!result.attempts[0].verdict.ok(), "the first pass is expected to fail");
+    QVERIFY(result.verdict.ok());
+    const AttemptRecord& chosen = result.attempts[result.chosen];
+    QCOMPARE(chosen.action, std::string("remesh"));
+    QCOMPARE(chosen.resume_batch, -1);
+    const Garment& first = *f.scene->garment;
+    const Garment& remeshed = *result.session->scene().garment;
+    QVERIFY(std::abs(remeshed.target_edge_length - first.target_edge_length) > 1e-3);
+    QVERIFY(remeshed.vertex_count() != first.vertex_count());
+    QCOMPARE(remeshed.pieces.size(), first.pieces.size());
+    QCOMPARE(result.session->positions().rows(), Eigen::Index(remeshed.vertex_count()));
+    // Its own garment is the one measured clean (the first pass's mesh does not even fit it).
+    const GarmentChecker checker(remeshed, f.body.get(), expected_regions_from_names(remeshed));
+    QVERIFY(judge_garment(remeshed, checker.measure(result.session->positions())).ok());
   }
 
   void aSpentBudgetStopsTheAttempts() {
     Fixture& f = fixture();
     RecoverySettings settings;
     settings.work = 0.0;
-    const RecoveryResult result = recover(f.first_pass, *f.checker, settings);
+    const RecoveryResult result = recover(f.first_pass, f.body.get(), settings);
     QCOMPARE(result.attempts.size(), std::size_t(1));
     QVERIFY(result.out_of_budget);
     QCOMPARE(result.chosen, 0);
