@@ -7,6 +7,7 @@
 #include <exception>
 #include <thread>
 
+#include "engine/core/error.h"
 #include "engine/seeding/scene.h"
 #include "engine/seeding/seed_choice.h"
 
@@ -25,6 +26,7 @@ class CancelOnly : public SessionObserver {
 
 struct Attempt {
   RecoveryAction action;
+  std::shared_ptr<const Scene> remeshed;  // Remesh: the scene it arranges
   std::shared_ptr<Session> session;
   GarmentMetrics metrics;
   AttemptRecord record;
@@ -54,9 +56,9 @@ void run_attempt(const Session& base, const BodyReference* body, Observer* obser
                  Attempt& attempt) {
   const auto start = std::chrono::steady_clock::now();
   const RecoveryAction& action = attempt.action;
-  if (action.kind == RecoveryActionKind::Remesh)
-    attempt.session = std::make_shared<Session>(remesh_scene(base.scene(), action.edge_length),
-                                                apply_action(action, base.options()));
+  if (attempt.remeshed)
+    attempt.session =
+        std::make_shared<Session>(attempt.remeshed, apply_action(action, base.options()));
   else
     attempt.session =
         std::make_shared<Session>(base, base.checkpoint_before_batch(action.resume_batch),
@@ -133,9 +135,19 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
         over_budget = true;
         continue;
       }
+      std::shared_ptr<const Scene> remeshed;
+      if (action.kind == RecoveryActionKind::Remesh) {
+        // Meshed here, before the round: a mesh past the vertex budget is no attempt.
+        try {
+          remeshed = remesh_scene(*result.session->scene().garment, scene.body, action.edge_length);
+        } catch (const BudgetError&) {
+          tried.push_back(key);
+          continue;
+        }
+      }
       planned += cost;
       tried.push_back(key);
-      round.push_back({action, nullptr, {}, {}});
+      round.push_back({action, std::move(remeshed), nullptr, {}, {}});
     }
     if (round.empty()) {
       result.out_of_budget = over_budget;

@@ -30,14 +30,12 @@ std::shared_ptr<const Scene> load_scene(const std::filesystem::path& pattern,
   return make_scene(std::move(garment), std::move(loaded), options);
 }
 
-std::shared_ptr<const Scene> remesh_scene(const Scene& scene, double target_edge_length,
-                                          const std::filesystem::path& classifier_weights) {
+std::shared_ptr<const Scene> remesh_scene(const Garment& garment, std::shared_ptr<const Body> body,
+                                          double target_edge_length) {
   SceneOptions options;
   options.meshing.target_edge_length = target_edge_length;
-  options.classifier_weights = classifier_weights;
-  auto garment =
-      std::make_shared<const Garment>(build_garment(scene.garment->pattern, options.meshing));
-  return make_scene(std::move(garment), scene.body, options);
+  auto remeshed = std::make_shared<const Garment>(build_garment(garment.pattern, options.meshing));
+  return make_scene(std::move(remeshed), std::move(body), options);
 }
 
 }  // namespace garment

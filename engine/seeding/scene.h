@@ -41,10 +41,10 @@ std::shared_ptr<const Scene> make_scene(std::shared_ptr<const Garment> garment,
                                         std::shared_ptr<const Body> body,
                                         const SceneOptions& options = {});
 
-// The same pattern and body with the pattern meshed again at `target_edge_length` (metres), its
-// pieces classified again (the seed graph reads the meshed outlines); the body is shared.
-// classifier_weights: as for make_scene.
-std::shared_ptr<const Scene> remesh_scene(const Scene& scene, double target_edge_length,
-                                          const std::filesystem::path& classifier_weights = {});
+// `garment`'s pattern meshed again at `target_edge_length` (metres) on `body`, its pieces
+// classified again with the bundled weights (the seed graph reads the meshed outlines): the scene
+// `load_scene` gives for the same files with that edge length. Throws BudgetError as build_garment.
+std::shared_ptr<const Scene> remesh_scene(const Garment& garment, std::shared_ptr<const Body> body,
+                                          double target_edge_length);
 
 }  // namespace garment
