@@ -6,6 +6,13 @@
 
 namespace garment::ui {
 
+namespace {
+
+constexpr const char* kPassColour = "#2e7d32";
+constexpr const char* kFailColour = "#c62828";
+
+}  // namespace
+
 ArrangementStatusBar::ArrangementStatusBar(QWidget* parent) : QStatusBar(parent) {
   phase_ = new QLabel(this);
   batch_ = new QLabel(this);
@@ -20,6 +27,10 @@ ArrangementStatusBar::ArrangementStatusBar(QWidget* parent) : QStatusBar(parent)
     addPermanentWidget(label);
   }
   addPermanentWidget(progress_);
+  // Right after the phase, so that "done" is never read without the verdict.
+  quality_ = new QLabel(this);
+  quality_->setObjectName("quality_status");
+  insertPermanentWidget(1, quality_);
   setStatus({});
 }
 
@@ -34,6 +45,17 @@ void ArrangementStatusBar::setStatus(const ArrangementStatus& status) {
   } else {
     progress_->setRange(0, 100);
     progress_->setValue(std::max(0, progressPercent()));
+  }
+  quality_->setVisible(status_.quality_failures.has_value());
+  quality_->setText(qualityText());
+  if (status_.quality_failures) {
+    const bool ok = status_.quality_failures->isEmpty();
+    // White on a saturated background: readable on light and dark styles alike.
+    quality_->setStyleSheet(
+        QString("QLabel { color: white; background-color: %1; padding: 1px 6px; }")
+            .arg(QLatin1String(ok ? kPassColour : kFailColour)));
+    quality_->setToolTip(ok ? tr("The garment passes every quality check")
+                            : status_.quality_failures->join('\n'));
   }
 }
 
@@ -56,6 +78,14 @@ QString ArrangementStatusBar::elapsedText() const {
   const int minutes = tenths / 600;
   const int seconds = (tenths / 10) % 60;
   return tr("%1:%2.%3").arg(minutes).arg(seconds, 2, 10, QChar('0')).arg(tenths % 10);
+}
+
+QString ArrangementStatusBar::qualityText() const {
+  if (!status_.quality_failures) return {};
+  const qsizetype failures = status_.quality_failures->size();
+  if (failures == 0) return tr("quality: ok");
+  if (failures == 1) return tr("quality: fails — 1 problem");
+  return tr("quality: fails — %1 problems").arg(failures);
 }
 
 int ArrangementStatusBar::progressPercent() const {

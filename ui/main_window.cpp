@@ -24,6 +24,7 @@
 #include "ui/avatar_view.h"
 #include "ui/bundled_resources.h"
 #include "ui/pattern_view.h"
+#include "ui/quality_panel.h"
 #include "ui/recent_files.h"
 
 namespace garment::ui {
@@ -125,6 +126,13 @@ void MainWindow::createDocks() {
   connect(order_list_, &ArrangementOrderList::orderChanged, this,
           &MainWindow::arrangementOrderChanged);
   add_dock(tr("Arrangement order"), "order_dock", order_list_);
+
+  quality_panel_ = new QualityPanel(this);
+  connect(quality_panel_, &QualityPanel::piecesChosen, this, [this](const QList<int>& pieces) {
+    selectPieces(pieces);
+    Q_EMIT pieceSelectionChanged(selectedPieces());
+  });
+  add_dock(tr("Quality"), "quality_dock", quality_panel_);
 }
 
 void MainWindow::createActions() {
@@ -276,6 +284,7 @@ bool MainWindow::openPatternFile(const QString& path, bool remember) {
   classifier_model_->setClassifications({}, {});
   order_list_->clear();
   status_bar_->setStatus({});
+  clearQuality();
   if (remember) RecentFiles::add(path);
   updateTitle();
   Q_EMIT garmentOpened(garment_);
@@ -301,6 +310,8 @@ bool MainWindow::openBodyFile(const QString& path, bool remember) {
   body_path_ = path;
   avatar_view_->setBody(std::shared_ptr<const BodyMesh>(body_, &body_->mesh));
   setBodyLocations(body_location_markers(body_->locations));
+  // The verdict was of the garment on the body before.
+  clearQuality();
   if (remember) RecentFiles::add(path);
   updateTitle();
   Q_EMIT bodyOpened(body_);
@@ -346,6 +357,18 @@ void MainWindow::setArrangementOrder(const std::vector<int>& pieces) {
 }
 
 void MainWindow::setArrangementStatus(const ArrangementStatus& status) {
+  status_bar_->setStatus(status);
+}
+
+void MainWindow::setQualityVerdict(const std::optional<QualityVerdict>& verdict,
+                                   const QStringList& piece_names) {
+  quality_panel_->setVerdict(verdict, piece_names);
+}
+
+void MainWindow::clearQuality() {
+  setQualityVerdict(std::nullopt, {});
+  ArrangementStatus status = status_bar_->status();
+  status.quality_failures.reset();
   status_bar_->setStatus(status);
 }
 

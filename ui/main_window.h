@@ -1,8 +1,9 @@
 #pragma once
 // The garment-studio main window: the pattern view and the avatar view side by side in a splitter,
-// docks for the classifier's verdict, the body locations and the arrangement order, and a status
-// bar for the arrangement's progress. Opens patterns and bodies (menus, recent files, drag and
-// drop); a file that fails to open is reported and leaves what is open untouched.
+// docks for the classifier's verdict, the body locations, the arrangement order and the garment's
+// quality, and a status bar for the arrangement's progress. Opens patterns and bodies (menus,
+// recent files, drag and drop); a file that fails to open is reported and leaves what is open
+// untouched.
 //
 // The arrangement session plugs in from outside through plain data: the set* functions below take
 // what a session snapshot holds, the signals carry what the user asked for, and sessionActions()
@@ -13,10 +14,12 @@
 #include <QMainWindow>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "engine/body/body.h"
 #include "engine/pattern/garment_mesh.h"
+#include "engine/quality/verdict.h"
 #include "ui/arrangement_status_bar.h"
 #include "ui/body_location_marker.h"
 #include "ui/classifier_table_model.h"
@@ -35,6 +38,7 @@ namespace garment::ui {
 class ArrangementOrderList;
 class AvatarView;
 class PatternView;
+class QualityPanel;
 
 // Actions the session integration connects and enables.
 struct SessionActions {
@@ -83,6 +87,10 @@ class MainWindow : public QMainWindow {
   void setBodyLocations(std::vector<BodyLocationMarker> locations);
   void setArrangementOrder(const std::vector<int>& pieces);
   void setArrangementStatus(const ArrangementStatus& status);
+  // The Quality panel's verdict (nullopt: nothing judged); piece_names in the verdict's garment's
+  // piece order. Opening a pattern or a body clears it, and the status bar's verdict.
+  void setQualityVerdict(const std::optional<QualityVerdict>& verdict,
+                         const QStringList& piece_names);
 
   void selectPieces(const QList<int>& pieces);  // in both views; does not emit
   QList<int> selectedPieces() const;
@@ -93,13 +101,14 @@ class MainWindow : public QMainWindow {
   QListWidget* locationList() const { return location_list_; }
   ClassifierTableModel* classifierModel() const { return classifier_model_; }
   ArrangementStatusBar* arrangementStatusBar() const { return status_bar_; }
+  QualityPanel* qualityPanel() const { return quality_panel_; }
   const SessionActions& sessionActions() const { return session_actions_; }
   QMenu* recentFilesMenu() const { return recent_menu_; }
 
  signals:
   void garmentOpened(std::shared_ptr<const garment::Garment> garment);
   void bodyOpened(std::shared_ptr<const garment::Body> body);
-  // The user selected pieces in either view.
+  // The user selected pieces in either view, or chose a failure in the Quality panel.
   void pieceSelectionChanged(const QList<int>& pieces);
   // The user chose a body location in the list (-1: none).
   void bodyLocationSelected(int location);
@@ -119,6 +128,7 @@ class MainWindow : public QMainWindow {
   bool openPatternFile(const QString& path, bool remember);
   bool openBodyFile(const QString& path, bool remember);
   void presentError(const QString& title, const QString& message);
+  void clearQuality();
   void updateTitle();
   void restoreSettings();
   void saveSettings() const;
@@ -130,6 +140,7 @@ class MainWindow : public QMainWindow {
   QTableView* classifier_table_ = nullptr;
   QListWidget* location_list_ = nullptr;
   ArrangementOrderList* order_list_ = nullptr;
+  QualityPanel* quality_panel_ = nullptr;
   ArrangementStatusBar* status_bar_ = nullptr;
   QMenu* recent_menu_ = nullptr;
   QMenu* view_menu_ = nullptr;

@@ -194,6 +194,8 @@ void SessionThread::run() {
     stepOnce(observer);
   }
   // The session is the worker's: it ends here too.
+  checker_.reset();
+  body_reference_.reset();
   session_.reset();
   scene_.reset();
 }
@@ -242,6 +244,9 @@ void SessionThread::execute(const Command& command) {
         steps_requested_ = 0;
         session_.reset();
         options_ = command.options;
+        verdict_.reset();
+        checker_.reset();
+        body_reference_.reset();
         scene_.reset();
         scene_ = make_scene(command.garment, command.body);
         session_ = std::make_unique<Session>(scene_, options_);
@@ -330,10 +335,7 @@ void SessionThread::exportFile(ExportKind kind, const QString& path) {
                   garment_glb_meshes(*scene.garment, session_->positions(), scene.body.get()));
         break;
       case ExportKind::Report: {
-        const BodyReference reference(scene.body->mesh);
-        const GarmentMetrics metrics =
-            measure_garment(*scene.garment, session_->positions(), &reference,
-                            expected_regions_from_names(*scene.garment));
+        const GarmentMetrics metrics = checker().measure(session_->positions());
         const QualityVerdict verdict = judge_garment(*scene.garment, metrics);
         write_file_atomically(file, session_report_json(*session_, metrics, verdict) + "\n");
         break;
@@ -345,6 +347,15 @@ void SessionThread::exportFile(ExportKind kind, const QString& path) {
     return;
   }
   sendToGui([this, path] { Q_EMIT exportFinished(path, QString()); });
+}
+
+const GarmentChecker& SessionThread::checker() {
+  if (!checker_) {
+    body_reference_ = std::make_unique<BodyReference>(scene_->body->mesh);
+    checker_ = std::make_unique<GarmentChecker>(*scene_->garment, body_reference_.get(),
+                                                expected_regions_from_names(*scene_->garment));
+  }
+  return *checker_;
 }
 
 void SessionThread::publishUpdate() {
@@ -378,6 +389,14 @@ void SessionThread::publishState() {
   state.seed = session_->options().seed ? *session_->options().seed : state.automatic_seed;
   state.history = history_;
   state.scene = scene_;
+  // Judged once per ending: a command that changes a done session's garment (reset, reseed,
+  // reorder, an earlier checkpoint) leaves the session not done, and every command is followed by
+  // a state; the others keep the garment that was judged.
+  if (!state.done)
+    verdict_.reset();
+  else if (!verdict_)
+    verdict_ = judge_garment(*scene_->garment, checker().measure(session_->positions()));
+  state.verdict = verdict_;
   sendToGui([this, state] { Q_EMIT stateChanged(state); });
 }
 

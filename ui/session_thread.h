@@ -3,7 +3,8 @@
 // Mandelbrot example (renderthread.cpp): the GUI thread copies each command into a queue under a
 // mutex and wakes the worker; the worker alone owns and touches the engine session (and builds the
 // scene, which runs the classifier), and sends what the GUI shows by value: live snapshots during
-// solves (throttled, at most one in flight), and the session's state after every phase or command.
+// solves (throttled, at most one in flight), and the session's state after every phase or command,
+// with the garment's quality verdict once the session is done.
 // The destructor aborts the running phase and waits for the thread.
 //
 // What the worker sends goes into an outbox under a std::mutex, and a queued signal without
@@ -30,6 +31,8 @@
 #include <optional>
 #include <vector>
 
+#include "engine/quality/garment_metrics.h"
+#include "engine/quality/verdict.h"
 #include "engine/session/session.h"
 
 namespace garment::ui {
@@ -67,6 +70,9 @@ struct SessionState {
   SeedPlan automatic_seed;             // the classifier's
   QStringList history;                 // one label per checkpoint, oldest first
   std::shared_ptr<const Scene> scene;  // immutable; for the classifier's verdict and exports
+  // The garment's quality once the session is done (nullopt before): judged on the worker, so
+  // that the window never shows an ended arrangement without saying whether it passes.
+  std::optional<QualityVerdict> verdict;
 };
 
 class SessionThread : public QThread {
@@ -139,6 +145,7 @@ class SessionThread : public QThread {
   void publishState();
   void publishUpdate();
   void exportFile(ExportKind kind, const QString& path);
+  const GarmentChecker& checker();
   QString checkpointLabel(Phase ran) const;
 
   // Shared with the GUI thread, under mutex_.
@@ -156,6 +163,12 @@ class SessionThread : public QThread {
   // Worker thread only.
   std::shared_ptr<const Scene> scene_;
   std::unique_ptr<Session> session_;
+  // The scene's quality checker, built when the first verdict or report needs it and kept with the
+  // scene (it reads the scene's garment and body_reference_, declared before it so that it goes
+  // first).
+  std::unique_ptr<BodyReference> body_reference_;
+  std::unique_ptr<GarmentChecker> checker_;
+  std::optional<QualityVerdict> verdict_;  // of the done session's garment
   SessionOptions options_;
   bool running_ = false;
   int steps_requested_ = 0;

@@ -16,6 +16,7 @@
 #include "ui/arrangement_order_list.h"
 #include "ui/main_window.h"
 #include "ui/manual_seed_panel.h"
+#include "ui/quality_panel.h"
 
 namespace garment::ui {
 
@@ -166,6 +167,9 @@ void StudioController::applyUpdate(const SessionUpdate& update) {
   // Placing the pieces is most of the work; the post-process the last tenth.
   status.progress = done ? 1.0 : 0.9 * placed / std::max<std::size_t>(1, update.pieces.size());
   status.running = state_.running;
+  // The verdict comes with the state that follows the update; until then an ended run keeps the
+  // verdict shown, and a run under way has none.
+  if (done) status.quality_failures = window_->arrangementStatusBar()->status().quality_failures;
   window_->setArrangementStatus(status);
 }
 
@@ -193,9 +197,24 @@ void StudioController::applyState(const SessionState& state) {
   status.batch_count = state.done ? state.batch_count : 0;
   if (!state.running)
     status.phase = state.done ? tr("done") : tr("next: %1").arg(to_string(state.phase));
+  showVerdict(state, status);
   window_->setArrangementStatus(status);
   updateActions();
   Q_EMIT stateApplied(state);
+}
+
+void StudioController::showVerdict(const SessionState& state, ArrangementStatus& status) {
+  QStringList names;
+  if (state.scene)
+    for (const Piece& piece : state.scene->garment->pieces)
+      names << QString::fromStdString(piece.name);
+  window_->setQualityVerdict(state.verdict, names);
+  status.quality_failures.reset();
+  if (!state.verdict) return;
+  QStringList failures;
+  for (const QualityRow& row : window_->qualityPanel()->rows())
+    failures << row.kind + ": " + row.message;
+  status.quality_failures = failures;
 }
 
 void StudioController::updateActions() {

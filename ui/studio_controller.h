@@ -1,14 +1,15 @@
 #pragma once
 // Connects the main window to an arrangement session on the worker thread (SessionThread): opens a
 // session when a pattern and a body are open; drives it from the Run/Pause, Step, Stop and Reset
-// actions; shows its live updates in both views and the status bar; and adds the panels that act
-// on it: the classifier's verdict with a manual seed, the arrangement order (drag, or "arrange
-// next") and the history of checkpoints. Exports go through the worker. Only user interface here:
-// every computation is the engine's, on the worker.
+// actions; shows its live updates in both views and the status bar, and the garment's quality
+// verdict when it ends; and adds the panels that act on it: the classifier's verdict with a manual
+// seed, the arrangement order (drag, or "arrange next") and the history of checkpoints. Exports go
+// through the worker. Only user interface here: every computation is the engine's, on the worker.
 
 #include <QObject>
 #include <memory>
 
+#include "ui/arrangement_status_bar.h"
 #include "ui/session_thread.h"
 
 class QAction;
@@ -59,6 +60,8 @@ class StudioController : public QObject {
   void seedFromChoice();
   void updateSeedChoice();
   void showClassification(const SessionState& state);
+  // The state's quality verdict in the Quality panel and in `status`.
+  void showVerdict(const SessionState& state, ArrangementStatus& status);
   QString seedText(const SeedPlan& plan) const;
   void askExport(SessionThread::ExportKind kind);
 

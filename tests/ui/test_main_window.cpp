@@ -1,7 +1,9 @@
 // The main window: opens with the demo, picking in either view selects in both, a bad file is
 // reported (through the injected presenter and through the real message box) and leaves the open
 // pattern, files dropped on the window open, recent files and window geometry persist, the
-// session's actions exist and stay disabled until a session connects them.
+// session's actions exist and stay disabled until a session connects them, a click on a failure in
+// the Quality panel selects its pieces in both views, and opening a pattern or a body clears the
+// verdict.
 
 #include <QAction>
 #include <QListWidget>
@@ -11,6 +13,7 @@
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QTimer>
+#include <QTreeWidget>
 #include <QtTest>
 
 #include "engine/body/default_body.h"
@@ -20,6 +23,7 @@
 #include "ui/avatar_view.h"
 #include "ui/main_window.h"
 #include "ui/pattern_view.h"
+#include "ui/quality_panel.h"
 #include "ui/recent_files.h"
 
 using namespace garment;
@@ -36,6 +40,24 @@ QString test_pattern(const char* name) {
 
 QString default_body() {
   return QString::fromStdString(default_body_path().string());
+}
+
+QStringList piece_names(const Garment& garment) {
+  QStringList names;
+  for (const Piece& piece : garment.pieces)
+    names << QString::fromStdString(piece.name);
+  return names;
+}
+
+// A verdict on the demo garment with one failure on two of its pieces.
+QualityVerdict crossing_between(int a, int b) {
+  QualityFailure failure;
+  failure.kind = FailureKind::SelfCrossing;
+  failure.pieces = {a, b};
+  failure.message = "5 cloth edges crossing cloth";
+  QualityVerdict verdict;
+  verdict.failures.push_back(failure);
+  return verdict;
 }
 
 void drop_files(QWidget& target, const QStringList& paths) {
@@ -153,6 +175,49 @@ class MainWindowTest : public QObject {
     QCOMPARE(selection.count(), 2);
     QCOMPARE(selection.at(1).at(0).value<QList<int>>(), QList<int>({6}));
     QVERIFY(pattern->sewingHighlightCount() > 0);
+  }
+
+  void qualityFailureSelectsItsPiecesInBothViews() {
+    const Garment& garment = *window_->garment();
+    QVERIFY(garment.pieces.size() > 5);
+    window_->setQualityVerdict(crossing_between(2, 5), piece_names(garment));
+    QTreeWidget* list = window_->qualityPanel()->failureList();
+    QVERIFY(list->isVisible());
+    QCOMPARE(list->topLevelItemCount(), 1);
+    QTreeWidgetItem* item = list->topLevelItem(0);
+    QCOMPARE(item->text(ui::QualityPanel::PiecesColumn),
+             QString::fromStdString(garment.pieces[2].name + ", " + garment.pieces[5].name));
+    QSignalSpy selection(window_.get(), &ui::MainWindow::pieceSelectionChanged);
+    const QRect row = list->visualItemRect(item);
+    QVERIFY(list->viewport()->rect().contains(row.center()));
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, Qt::NoModifier, row.center());
+    QCOMPARE(window_->patternView()->selectedPieces(), QList<int>({2, 5}));
+    QCOMPARE(window_->avatarView()->selectedPieces(), QList<int>({2, 5}));
+    // A selection by the user, as a click in a view is: the manual seed follows it.
+    QCOMPARE(selection.count(), 1);
+    QCOMPARE(selection.at(0).at(0).value<QList<int>>(), QList<int>({2, 5}));
+  }
+
+  void openingClearsTheVerdict() {
+    auto show_failed_verdict = [this] {
+      window_->setQualityVerdict(crossing_between(0, 1), piece_names(*window_->garment()));
+      ui::ArrangementStatus status;
+      status.phase = "done";
+      status.quality_failures = QStringList{"self_crossing: 5 cloth edges crossing cloth"};
+      window_->setArrangementStatus(status);
+      QVERIFY(window_->qualityPanel()->judged());
+      QVERIFY(!window_->arrangementStatusBar()->qualityText().isEmpty());
+    };
+    show_failed_verdict();
+    QVERIFY2(window_->openBody(default_body()), qPrintable(errors_.messages.join("\n")));
+    QVERIFY(!window_->qualityPanel()->judged());
+    QCOMPARE(window_->qualityPanel()->failureList()->topLevelItemCount(), 0);
+    QCOMPARE(window_->arrangementStatusBar()->qualityText(), QString());
+
+    show_failed_verdict();
+    QVERIFY(window_->openPattern(test_pattern("basic_tee__tee.json")));
+    QVERIFY(!window_->qualityPanel()->judged());
+    QCOMPARE(window_->arrangementStatusBar()->qualityText(), QString());
   }
 
   void badPatternKeepsTheOpenOne() {

@@ -1,10 +1,14 @@
 // The side panels and helpers: the arrangement order list (a drop reorders and emits the new
-// order), the classifier table, the status bar, and the event-loop latency probe.
+// order), the classifier table, the status bar (with the quality verdict, green or red), the
+// Quality panel (a verdict's failures as rows; a click asks for their pieces), and the event-loop
+// latency probe.
 
+#include <QLabel>
 #include <QMimeData>
 #include <QSignalSpy>
 #include <QThread>
 #include <QTimer>
+#include <QTreeWidget>
 #include <QtTest>
 
 #include "tests/ui/ui_test_support.h"
@@ -12,6 +16,7 @@
 #include "ui/arrangement_status_bar.h"
 #include "ui/classifier_table_model.h"
 #include "ui/event_loop_latency_probe.h"
+#include "ui/quality_panel.h"
 
 using namespace garment;
 
@@ -31,6 +36,28 @@ void drop_row(ui::ArrangementOrderList& list, int from, const QPoint& at) {
   QDropEvent drop(QPointF(at), Qt::MoveAction, data.get(), Qt::LeftButton, Qt::NoModifier);
   QApplication::sendEvent(list.viewport(), &drop);
   QVERIFY(drop.isAccepted());
+}
+
+// A verdict as judge_garment writes one for a garment of kNames: cloth crossing cloth between the
+// front and the right sleeve, and the collar stretched.
+QualityVerdict two_failures() {
+  QualityVerdict verdict;
+  QualityFailure crossing;
+  crossing.kind = FailureKind::SelfCrossing;
+  crossing.pieces = {0, 3};
+  crossing.message = "12 cloth edges crossing cloth: front × sleeve_r (12)";
+  QualityFailure strain;
+  strain.kind = FailureKind::Strain;
+  strain.pieces = {4};
+  strain.message = "max strain 31.5 % > 20 % (its edge 3 mm from the body): collar";
+  verdict.failures = {crossing, strain};
+  return verdict;
+}
+
+// Pixels of a widget's image within `tolerance` of a colour.
+int pixels_near(const QImage& image, const QColor& colour, int tolerance) {
+  return test::count_pixels(
+      image, [&](const QColor& c) { return test::colours_close(c, colour, tolerance); });
 }
 
 }  // namespace
@@ -139,6 +166,128 @@ class PanelsTest : public QObject {
     status.batch_count = 0;
     bar.setStatus(status);
     QCOMPARE(bar.batchText(), QString("batch 3"));
+  }
+
+  void statusBarShowsTheVerdictInColour() {
+    ui::ArrangementStatusBar bar;
+    bar.resize(900, 30);
+    bar.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&bar));
+    ui::ArrangementStatus status;
+    status.phase = "done";
+    status.progress = 1.0;
+    bar.setStatus(status);
+    // Not judged: nothing said, no label.
+    QCOMPARE(bar.qualityText(), QString());
+    QVERIFY(!bar.qualityLabel()->isVisibleTo(&bar));
+
+    status.quality_failures = QStringList{"self_crossing: 12 cloth edges crossing cloth",
+                                          "strain: max strain 31.5 % > 20 %"};
+    bar.setStatus(status);
+    QCOMPARE(bar.phaseText(), QString("phase: done"));
+    QCOMPARE(bar.qualityText(), QString("quality: fails — 2 problems"));
+    QVERIFY(bar.qualityLabel()->isVisibleTo(&bar));
+    QCOMPARE(bar.qualityLabel()->text(), QString("quality: fails — 2 problems"));
+    QVERIFY(bar.qualityLabel()->toolTip().contains("31.5 %"));
+    const QColor red(0xc6, 0x28, 0x28), green(0x2e, 0x7d, 0x32);
+    QImage image = bar.qualityLabel()->grab().toImage();
+    GARMENT_VERIFY_IMAGE(pixels_near(image, red, 20) > image.width() * image.height() / 3, image,
+                         "status_quality_not_red");
+    QCOMPARE(pixels_near(image, green, 20), 0);
+
+    status.quality_failures = QStringList{"fold: 3 folds (theta_in -0.80): back"};
+    bar.setStatus(status);
+    QCOMPARE(bar.qualityText(), QString("quality: fails — 1 problem"));
+
+    status.quality_failures = QStringList{};
+    bar.setStatus(status);
+    QCOMPARE(bar.qualityText(), QString("quality: ok"));
+    image = bar.qualityLabel()->grab().toImage();
+    GARMENT_VERIFY_IMAGE(pixels_near(image, green, 20) > image.width() * image.height() / 3, image,
+                         "status_quality_not_green");
+    QCOMPARE(pixels_near(image, red, 20), 0);
+
+    // A new run: the verdict goes.
+    status.quality_failures.reset();
+    bar.setStatus(status);
+    QCOMPARE(bar.qualityText(), QString());
+    QVERIFY(!bar.qualityLabel()->isVisibleTo(&bar));
+  }
+
+  void qualityRowsNameThePieces() {
+    const std::vector<ui::QualityRow> rows = ui::quality_rows(two_failures(), kNames);
+    QCOMPARE(rows.size(), std::size_t(2));
+    QCOMPARE(rows[0].kind, QString("self_crossing"));
+    QCOMPARE(rows[0].message, QString("12 cloth edges crossing cloth: front × sleeve_r (12)"));
+    QCOMPARE(rows[0].pieces, QList<int>({0, 3}));
+    QCOMPARE(rows[0].piece_names, QStringList({"front", "sleeve_r"}));
+    QCOMPARE(rows[1].kind, QString("strain"));
+    QCOMPARE(rows[1].piece_names, QStringList({"collar"}));
+    // Every kind has its name.
+    QualityVerdict all;
+    for (FailureKind kind : {FailureKind::BodyPenetration, FailureKind::Fold, FailureKind::SeamGap,
+                             FailureKind::Misplaced}) {
+      QualityFailure failure;
+      failure.kind = kind;
+      all.failures.push_back(failure);
+    }
+    QStringList kinds;
+    for (const ui::QualityRow& row : ui::quality_rows(all, kNames))
+      kinds << row.kind;
+    QCOMPARE(kinds, QStringList({"body_penetration", "fold", "seam_gap", "misplaced"}));
+    // A piece the names do not cover (a verdict of another garment) is named by its index.
+    QualityVerdict stale;
+    stale.failures.push_back(two_failures().failures[0]);
+    stale.failures[0].pieces = {1, 7};
+    QCOMPARE(ui::quality_rows(stale, kNames)[0].piece_names, QStringList({"back", "piece 7"}));
+    QVERIFY(ui::quality_rows(QualityVerdict{}, kNames).empty());
+  }
+
+  void qualityPanelListsFailuresAndAChoiceAsksForItsPieces() {
+    ui::QualityPanel panel;
+    panel.resize(600, 300);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    QVERIFY(!panel.judged());
+    QVERIFY(panel.summaryText().startsWith("No verdict yet"));
+    QTreeWidget* list = panel.failureList();
+    QCOMPARE(list->topLevelItemCount(), 0);
+
+    panel.setVerdict(two_failures(), kNames);
+    QVERIFY(panel.judged());
+    QCOMPARE(panel.summaryText(), QString("The garment fails 2 quality checks:"));
+    QCOMPARE(list->topLevelItemCount(), 2);
+    QTreeWidgetItem* crossing = list->topLevelItem(0);
+    QCOMPARE(crossing->text(ui::QualityPanel::KindColumn), QString("self_crossing"));
+    QCOMPARE(crossing->text(ui::QualityPanel::PiecesColumn), QString("front, sleeve_r"));
+    QCOMPARE(crossing->text(ui::QualityPanel::MessageColumn),
+             QString("12 cloth edges crossing cloth: front × sleeve_r (12)"));
+    QTreeWidgetItem* strain = list->topLevelItem(1);
+    QCOMPARE(strain->text(ui::QualityPanel::PiecesColumn), QString("collar"));
+    QVERIFY(strain->toolTip(ui::QualityPanel::KindColumn).contains("31.5 %"));
+
+    // A click on a row asks for its pieces.
+    QSignalSpy chosen(&panel, &ui::QualityPanel::piecesChosen);
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, Qt::NoModifier,
+                      list->visualItemRect(strain).center());
+    QCOMPARE(chosen.count(), 1);
+    QCOMPARE(chosen.takeFirst().at(0).value<QList<int>>(), QList<int>({4}));
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, Qt::NoModifier,
+                      list->visualItemRect(crossing).center());
+    QCOMPARE(chosen.count(), 1);
+    QCOMPARE(chosen.takeFirst().at(0).value<QList<int>>(), QList<int>({0, 3}));
+    // Below the rows: nothing.
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, Qt::NoModifier,
+                      QPoint(5, list->viewport()->height() - 3));
+    QCOMPARE(chosen.count(), 0);
+
+    panel.setVerdict(QualityVerdict{}, kNames);
+    QVERIFY(panel.judged());
+    QCOMPARE(panel.summaryText(), QString("The garment passes every quality check."));
+    QCOMPARE(list->topLevelItemCount(), 0);
+    panel.setVerdict(std::nullopt, {});
+    QVERIFY(!panel.judged());
+    QVERIFY(panel.rows().empty());
   }
 
   void latencyProbeSeesABlockedLoop() {
