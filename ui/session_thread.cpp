@@ -43,7 +43,7 @@ class SessionThread::Observer : public SessionObserver {
     update.running = snapshot.running;
     update.live = true;
     update.batch = snapshot.batch;
-    update.elapsed_seconds = snapshot.elapsed_seconds;
+    update.elapsed_seconds = thread_.arrangementSeconds();
     update.stage = stage_;
     update.stage_fraction = fraction_;
     update.pieces = snapshot.pieces;
@@ -207,7 +207,10 @@ void SessionThread::stepOnce(Observer& observer) {
   const int cores = std::max(1, QThread::idealThreadCount());
   tbb::task_arena arena(std::max(1, cores - 1));
   Phase ran = Phase::Seed;
+  seconds_before_phase_ = session_->report().seconds;
+  phase_started_ = std::chrono::steady_clock::now();
   arena.execute([&] { ran = session_->step(&observer); });
+  phase_started_.reset();
   // A completed phase adds a checkpoint; a cancelled one is undone by the engine and adds none.
   last_cancelled_ = session_->checkpoint_count() == checkpoints;
   if (!last_cancelled_) {
@@ -222,6 +225,12 @@ void SessionThread::stepOnce(Observer& observer) {
   }
   publishUpdate();
   publishState();
+}
+
+double SessionThread::arrangementSeconds() const {
+  if (!phase_started_) return session_->report().seconds;
+  const std::chrono::duration<double> running = std::chrono::steady_clock::now() - *phase_started_;
+  return seconds_before_phase_ + running.count();
 }
 
 QString SessionThread::checkpointLabel(Phase ran) const {
@@ -365,7 +374,7 @@ void SessionThread::publishUpdate() {
   update.phase = snapshot.phase;
   update.running = snapshot.running;
   update.batch = snapshot.batch;
-  update.elapsed_seconds = snapshot.elapsed_seconds;
+  update.elapsed_seconds = arrangementSeconds();
   update.pieces = snapshot.pieces;
   update.order = snapshot.order;
   sendToGui([this, update] { Q_EMIT updated(update); });

@@ -23,6 +23,7 @@
 #include <QStringList>
 #include <QThread>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -45,7 +46,7 @@ struct SessionUpdate {
   Phase running = Phase::Seed;  // the phase being solved (live updates)
   bool live = false;            // sent during a solve
   int batch = -1;
-  double elapsed_seconds = 0.0;
+  double elapsed_seconds = 0.0;  // the arrangement's clock (SessionThread::arrangementSeconds)
   QString stage;                 // the solver's stage name (live updates)
   double stage_fraction = -1.0;  // of the solver's iteration budget for that stage; < 0 unknown
   std::vector<garment::PieceState> pieces;
@@ -147,6 +148,11 @@ class SessionThread : public QThread {
   void exportFile(ExportKind kind, const QString& path);
   const GarmentChecker& checker();
   QString checkpointLabel(Phase ran) const;
+  // The clock the status bar shows: the seconds the phases that led to the current checkpoint took,
+  // plus those of the phase in progress. It starts at the first Run or Step, not when the session
+  // opens, and excludes pauses (it only runs while a phase does); a cancelled phase's time goes
+  // with the phase, and going back to a checkpoint (Reset included) goes back to its time.
+  double arrangementSeconds() const;
 
   // Shared with the GUI thread, under mutex_.
   std::mutex mutex_;
@@ -177,6 +183,9 @@ class SessionThread : public QThread {
   QString last_phase_;
   bool last_cancelled_ = false;
   QStringList history_;
+  // The phase in progress: when it started, and the session's seconds before it.
+  std::optional<std::chrono::steady_clock::time_point> phase_started_;
+  double seconds_before_phase_ = 0.0;
 };
 
 }  // namespace garment::ui

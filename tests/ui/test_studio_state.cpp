@@ -1,0 +1,128 @@
+// What the window says about the arrangement is the truth about the session it shows (issue 42,
+// item 7): the elapsed clock counts the arrangement from Run, not from the moment the files were
+// opened, and Reset zeroes it.
+//
+// Times are compared with the test's own clocks with wide margins: the machine may be busy.
+
+#include <QAction>
+#include <QElapsedTimer>
+#include <QEventLoop>
+#include <QtTest>
+#include <functional>
+
+#include "tests/ui/ui_test_support.h"
+#include "ui/main_window.h"
+#include "ui/studio_controller.h"
+
+using namespace garment;
+
+namespace {
+
+// Budgets well below the defaults: these tests check what the window shows, not the garment.
+SessionOptions quick_options() {
+  SessionOptions options;
+  ArrangementParameters& p = options.arrangement;
+  p.align = {20, 30};
+  p.body_round = {4, 6};
+  p.body_final = {15, 20};
+  p.refine = {20, 30};
+  p.settle = {15, 20};
+  p.max_flatten_revisits = 0;
+  p.seed_iterations = 60;
+  p.post_process_iterations = 60;
+  return options;
+}
+
+double seconds(const QElapsedTimer& timer) {
+  return timer.nsecsElapsed() * 1e-9;
+}
+
+}  // namespace
+
+class StudioStateTest : public QObject {
+  Q_OBJECT
+
+ private:
+  std::unique_ptr<ui::MainWindow> window_;
+  std::unique_ptr<ui::StudioController> controller_;
+  QStringList errors_;
+
+  // A window on the demo and the default body with a session ready (nothing run yet).
+  void open() {
+    controller_.reset();
+    window_ = std::make_unique<ui::MainWindow>();
+    window_->setErrorPresenter([this](const QString& title, const QString& message) {
+      errors_ << title + ": " + message;
+    });
+    window_->resize(1100, 700);
+    controller_ = std::make_unique<ui::StudioController>(window_.get(), quick_options());
+    QVERIFY(window_->openDemoPattern());
+    QVERIFY(window_->openDefaultBody());
+    window_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
+    QVERIFY(QTest::qWaitFor([this] { return state().has_session; }, 120000));
+  }
+
+  const ui::SessionState& state() const { return controller_->state(); }
+  const ui::ArrangementStatus& shown() const { return window_->arrangementStatusBar()->status(); }
+
+  bool waitFor(const std::function<bool(const ui::SessionState&)>& predicate, int timeout_ms) {
+    if (predicate(state())) return true;
+    QEventLoop loop;
+    QTimer::singleShot(timeout_ms, &loop, &QEventLoop::quit);
+    connect(controller_.get(), &ui::StudioController::stateApplied, &loop, [&] {
+      if (predicate(state())) loop.quit();
+    });
+    loop.exec();
+    return predicate(state());
+  }
+
+  void runToTheEnd() {
+    window_->sessionActions().run_pause->trigger();
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.done; }, 300000));
+    QVERIFY2(errors_.isEmpty(), qPrintable(errors_.join("\n")));
+  }
+
+ private slots:
+  void init() { errors_.clear(); }
+
+  void cleanup() {
+    controller_.reset();  // aborts a running session and joins the worker
+    window_.reset();
+  }
+
+  void elapsedCountsFromRun() {
+    open();
+    QElapsedTimer since_load;
+    since_load.start();
+    QTest::qWait(3000);  // the user looks at the pattern before running it
+
+    QElapsedTimer since_run;
+    since_run.start();
+    window_->sessionActions().run_pause->trigger();
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.phases_completed >= 1; }, 120000));
+    const double elapsed = shown().elapsed_seconds;
+    QVERIFY2(elapsed > 0.0, qPrintable(window_->arrangementStatusBar()->elapsedText()));
+    // The clock cannot have run longer than the arrangement: the wait before Run is not in it.
+    QVERIFY2(
+        elapsed <= seconds(since_run),
+        qPrintable(QString("shown %1 s, %2 s since Run").arg(elapsed).arg(seconds(since_run))));
+    QVERIFY(elapsed < seconds(since_load) - 2.5);
+  }
+
+  void resetZeroesTheElapsedClock() {
+    open();
+    runToTheEnd();
+    QVERIFY(shown().elapsed_seconds > 0.0);
+    QAction* reset = window_->sessionActions().reset;
+    QVERIFY(reset->isEnabled());
+    reset->trigger();
+    QVERIFY(
+        waitFor([](const ui::SessionState& s) { return !s.done && s.history.size() == 1; }, 60000));
+    QCOMPARE(shown().elapsed_seconds, 0.0);
+    QCOMPARE(window_->arrangementStatusBar()->elapsedText(), QString("0:00.0"));
+  }
+};
+
+GARMENT_UI_TEST_MAIN(StudioStateTest)
+#include "test_studio_state.moc"
