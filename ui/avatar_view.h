@@ -56,6 +56,7 @@ class AvatarView : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   // paint; nullptr, or a matrix whose row count is not the garment's vertex count, hides the
   // garment.
   void setGarmentPositions(std::shared_ptr<const Eigen::MatrixX3d> positions);
+  std::shared_ptr<const Eigen::MatrixX3d> garmentPositions() const { return positions_; }
   bool garmentShown() const;
   // Per piece; pieces past the end of the list are visible. Hidden pieces cannot be picked.
   void setPieceVisibility(std::vector<bool> visible);

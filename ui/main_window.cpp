@@ -278,13 +278,8 @@ bool MainWindow::openPatternFile(const QString& path, bool remember) {
   pattern_path_ = path;
   pattern_view_->setGarment(garment_);
   avatar_view_->setGarment(garment_);
-  // Until an arrangement runs, the 3D view shows the pieces where the file puts them.
-  avatar_view_->setGarmentPositions(
-      std::make_shared<const Eigen::MatrixX3d>(flat_placement(*garment_)));
   classifier_model_->setClassifications({}, {});
-  order_list_->clear();
-  status_bar_->setStatus({});
-  clearQuality();
+  clearArrangement();
   if (remember) RecentFiles::add(path);
   updateTitle();
   Q_EMIT garmentOpened(garment_);
@@ -310,8 +305,8 @@ bool MainWindow::openBodyFile(const QString& path, bool remember) {
   body_path_ = path;
   avatar_view_->setBody(std::shared_ptr<const BodyMesh>(body_, &body_->mesh));
   setBodyLocations(body_location_markers(body_->locations));
-  // The verdict was of the garment on the body before.
-  clearQuality();
+  // The arrangement shown was of the garment on the body before.
+  clearArrangement();
   if (remember) RecentFiles::add(path);
   updateTitle();
   Q_EMIT bodyOpened(body_);
@@ -365,11 +360,16 @@ void MainWindow::setQualityVerdict(const std::optional<QualityVerdict>& verdict,
   quality_panel_->setVerdict(verdict, piece_names);
 }
 
-void MainWindow::clearQuality() {
+void MainWindow::clearArrangement() {
+  if (garment_) {
+    // Until an arrangement runs, the 3D view shows the pieces where the file puts them.
+    avatar_view_->setGarmentPositions(
+        std::make_shared<const Eigen::MatrixX3d>(flat_placement(*garment_)));
+    pattern_view_->setPieceStates({});
+  }
+  order_list_->clear();
+  status_bar_->setStatus({});
   setQualityVerdict(std::nullopt, {});
-  ArrangementStatus status = status_bar_->status();
-  status.quality_failures.reset();
-  status_bar_->setStatus(status);
 }
 
 void MainWindow::selectPieces(const QList<int>& pieces) {

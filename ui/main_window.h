@@ -88,7 +88,8 @@ class MainWindow : public QMainWindow {
   void setArrangementOrder(const std::vector<int>& pieces);
   void setArrangementStatus(const ArrangementStatus& status);
   // The Quality panel's verdict (nullopt: nothing judged); piece_names in the verdict's garment's
-  // piece order. Opening a pattern or a body clears it, and the status bar's verdict.
+  // piece order. Opening a pattern or a body clears it, and the status bar's verdict (and the
+  // arrangement shown: positions, piece states, order and progress).
   void setQualityVerdict(const std::optional<QualityVerdict>& verdict,
                          const QStringList& piece_names);
 
@@ -128,7 +129,9 @@ class MainWindow : public QMainWindow {
   bool openPatternFile(const QString& path, bool remember);
   bool openBodyFile(const QString& path, bool remember);
   void presentError(const QString& title, const QString& message);
-  void clearQuality();
+  // Shows no arrangement: the garment as its file lays it out, every piece waiting, no order,
+  // progress or verdict.
+  void clearArrangement();
   void updateTitle();
   void restoreSettings();
   void saveSettings() const;

@@ -124,6 +124,8 @@ StudioController::~StudioController() = default;
 void StudioController::openSession() {
   if (!window_->garment() || !window_->body()) return;
   state_ = {};
+  // The last update was of the session replaced (its pieces' states feed the order list).
+  last_update_ = {};
   opening_ = true;
   shown_scene_.reset();
   thread_->openScene(window_->garment(), window_->body(), options_);

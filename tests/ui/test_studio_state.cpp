@@ -1,6 +1,6 @@
 // What the window says about the arrangement is the truth about the session it shows (issue 42,
 // item 7): the elapsed clock counts the arrangement from Run, not from the moment the files were
-// opened, and Reset zeroes it.
+// opened, and Reset zeroes it; opening another body stops showing the old garment and its progress.
 //
 // Times are compared with the test's own clocks with wide margins: the machine may be busy.
 
@@ -10,8 +10,12 @@
 #include <QtTest>
 #include <functional>
 
+#include "engine/quality/flat_placement.h"
+#include "support/test_paths.h"
 #include "tests/ui/ui_test_support.h"
+#include "ui/avatar_view.h"
 #include "ui/main_window.h"
+#include "ui/pattern_view.h"
 #include "ui/studio_controller.h"
 
 using namespace garment;
@@ -121,6 +125,38 @@ class StudioStateTest : public QObject {
         waitFor([](const ui::SessionState& s) { return !s.done && s.history.size() == 1; }, 60000));
     QCOMPARE(shown().elapsed_seconds, 0.0);
     QCOMPARE(window_->arrangementStatusBar()->elapsedText(), QString("0:00.0"));
+  }
+
+  void anotherBodyClearsTheOldGarment() {
+    open();
+    runToTheEnd();
+    const std::shared_ptr<const Eigen::MatrixX3d> arranged = controller_->lastUpdate().positions;
+    QCOMPARE(window_->arrangementStatusBar()->progressPercent(), 100);
+    QVERIFY(window_->avatarView()->garmentPositions() == arranged);
+
+    const QString other_body =
+        QString::fromStdString(test::test_data("bodies/m_smpl_average_A40.obj").string());
+    QVERIFY2(window_->openBody(other_body), qPrintable(errors_.join("\n")));
+    QVERIFY(waitFor(
+        [this](const ui::SessionState& s) {
+          return s.has_session && s.scene && s.scene->body == window_->body();
+        },
+        120000));
+
+    // The garment is shown as its file lays it out, as when a pattern opens, with no progress.
+    const Garment& garment = *window_->garment();
+    const std::shared_ptr<const Eigen::MatrixX3d> drawn = window_->avatarView()->garmentPositions();
+    QVERIFY(drawn);
+    QVERIFY(drawn->isApprox(flat_placement(garment)));
+    QVERIFY(!drawn->isApprox(*arranged));
+    for (int piece = 0; piece < static_cast<int>(garment.pieces.size()); ++piece)
+      QCOMPARE(window_->patternView()->pieceState(piece), ui::PieceState::Waiting);
+    ui::ArrangementStatusBar* status = window_->arrangementStatusBar();
+    QCOMPARE(status->progressPercent(), 0);
+    QCOMPARE(status->batchText(), QString("batch: –"));
+    QCOMPARE(status->elapsedText(), QString("0:00.0"));
+    QCOMPARE(status->phaseText(), QString("phase: next: seed"));
+    QVERIFY(status->qualityText().isEmpty());
   }
 };
 
