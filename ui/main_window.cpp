@@ -280,6 +280,8 @@ bool MainWindow::openPatternFile(const QString& path, bool remember) {
   avatar_view_->setGarment(garment_);
   classifier_model_->setClassifications({}, {});
   clearArrangement();
+  // A location chosen for the old pattern's seed: it would seed the new one where nobody chose to.
+  location_list_->setCurrentRow(-1);
   if (remember) RecentFiles::add(path);
   updateTitle();
   Q_EMIT garmentOpened(garment_);

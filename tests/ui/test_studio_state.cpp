@@ -1,12 +1,16 @@
 // What the window says about the arrangement is the truth about the session it shows (issue 42,
 // item 7): the elapsed clock counts the arrangement from Run, not from the moment the files were
-// opened, and Reset zeroes it; opening another body stops showing the old garment and its progress.
+// opened, and Reset zeroes it; opening another body stops showing the old garment and its progress;
+// opening another pattern forgets the body location chosen for the old one's seed.
 //
 // Times are compared with the test's own clocks with wide margins: the machine may be busy.
 
 #include <QAction>
 #include <QElapsedTimer>
 #include <QEventLoop>
+#include <QLabel>
+#include <QListWidget>
+#include <QPushButton>
 #include <QtTest>
 #include <functional>
 
@@ -15,6 +19,7 @@
 #include "tests/ui/ui_test_support.h"
 #include "ui/avatar_view.h"
 #include "ui/main_window.h"
+#include "ui/manual_seed_panel.h"
 #include "ui/pattern_view.h"
 #include "ui/studio_controller.h"
 
@@ -157,6 +162,40 @@ class StudioStateTest : public QObject {
     QCOMPARE(status->elapsedText(), QString("0:00.0"));
     QCOMPARE(status->phaseText(), QString("phase: next: seed"));
     QVERIFY(status->qualityText().isEmpty());
+  }
+
+  void anotherPatternForgetsTheChosenLocation() {
+    open();
+    QListWidget* locations = window_->locationList();
+    const int row = 3;
+    QVERIFY(locations->count() > row);
+    const QString location = locations->item(row)->text();
+    locations->scrollToItem(locations->item(row));
+    QTest::mouseClick(locations->viewport(), Qt::LeftButton, Qt::NoModifier,
+                      locations->visualItemRect(locations->item(row)).center());
+    QCOMPARE(locations->currentRow(), row);
+    ui::ManualSeedPanel* seed_panel = controller_->seedPanel();
+    QVERIFY(seed_panel->findChild<QLabel*>("seed_choice")->text().contains(location));
+
+    const QString other_pattern =
+        QString::fromStdString(test::test_data("patterns/skirts__skirt_4_panels.json").string());
+    QVERIFY2(window_->openPattern(other_pattern), qPrintable(errors_.join("\n")));
+    QVERIFY(waitFor(
+        [this](const ui::SessionState& s) {
+          return s.has_session && s.scene && s.scene->garment == window_->garment();
+        },
+        120000));
+
+    QCOMPARE(locations->currentRow(), -1);
+    QVERIFY(locations->selectedItems().isEmpty());
+    QCOMPARE(window_->avatarView()->highlightedLocation(), -1);
+    QVERIFY(!seed_panel->findChild<QLabel*>("seed_choice")->text().contains(location));
+    // A piece of the new pattern alone is not a seed choice: the location is still to be chosen.
+    ui::PatternView* pattern = window_->patternView();
+    QTest::mouseClick(pattern->viewport(), Qt::LeftButton, Qt::NoModifier,
+                      pattern->pieceLabelPosition(0));
+    QCOMPARE(window_->selectedPieces(), QList<int>{0});
+    QVERIFY(!seed_panel->seedButton()->isEnabled());
   }
 };
 
