@@ -74,12 +74,19 @@ QualityVerdict judge_garment(const Garment& garment, const GarmentMetrics& metri
   if (metrics.self_crossing_edges > 0) {
     std::set<int> pieces;
     std::string pairs;
-    for (const PiecePairCount& pair : metrics.self_crossing_pairs) {
+    // One line, read by a person: 2,000 stacked squares cross in 9,995 pairs (a 250 KB line).
+    constexpr std::size_t kPairsNamed = 8;
+    const std::size_t pair_count = metrics.self_crossing_pairs.size();
+    for (std::size_t i = 0; i < pair_count; ++i) {
+      const PiecePairCount& pair = metrics.self_crossing_pairs[i];
       pieces.insert(pair.piece_a);
       pieces.insert(pair.piece_b);
-      pairs += (pairs.empty() ? "" : ", ") + garment.pieces[pair.piece_a].name + " × " +
-               garment.pieces[pair.piece_b].name + " (" + std::to_string(pair.count) + ")";
+      if (i < kPairsNamed)
+        pairs += (pairs.empty() ? "" : ", ") + garment.pieces[pair.piece_a].name + " × " +
+                 garment.pieces[pair.piece_b].name + " (" + std::to_string(pair.count) + ")";
     }
+    if (pair_count > kPairsNamed)
+      pairs += " and " + std::to_string(pair_count - kPairsNamed) + " more pairs";
     QualityFailure failure;
     failure.kind = FailureKind::SelfCrossing;
     failure.excess = metrics.self_crossing_edges;

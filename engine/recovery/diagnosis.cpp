@@ -132,14 +132,17 @@ Diagnosis diagnose(const Garment& garment, const SessionReport& report,
   // a little finer or coarser starts every batch a little differently. On the even half's 43
   // first-pass failures (first pass alone, each on its own body) 16, 18 and 22 mm for the paper's
   // 20 mm made 9, 7 and 4 clean, 12 together; no other action made more than 1 on any attempt.
-  for (const double ratio : kRemeshRatios) {
-    // To a tenth of a millimetre, as `run --edge-length` would read it: a mesh one rounding
-    // error apart is another start, and the attempt should be one a user can run again.
-    const double edge = std::round(ratio * first_pass_edge_length * 1e4) / 1e4;
-    char reason[64];
-    std::snprintf(reason, sizeof reason, "all again on a mesh of %.3g mm", edge * 1e3);
-    actions.add({RecoveryActionKind::Remesh, -1, {}, {}, reason, edge});
-  }
+  // Only where the arrangement placed a failing piece: pieces it never moved fail alike on any
+  // mesh.
+  if (earliest < batch_count)
+    for (const double ratio : kRemeshRatios) {
+      // To a tenth of a millimetre, as `run --edge-length` would read it: a mesh one rounding
+      // error apart is another start, and the attempt should be one a user can run again.
+      const double edge = std::round(ratio * first_pass_edge_length * 1e4) / 1e4;
+      char reason[64];
+      std::snprintf(reason, sizeof reason, "all again on a mesh of %.3g mm", edge * 1e3);
+      actions.add({RecoveryActionKind::Remesh, -1, {}, {}, reason, edge});
+    }
 
   // Crossings between pieces, the most crossed pair first.
   std::vector<PiecePairCount> pairs = metrics.self_crossing_pairs;

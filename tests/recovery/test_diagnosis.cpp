@@ -6,7 +6,8 @@
 // - misplaced pieces → every other seed the rules find, from the seed; never the seed in use;
 // - a near miss → first a longer settle, resumed at the post-process;
 // - any failure → the whole arrangement again at 16, 18 and 22 mm for a 20 mm first pass, whatever
-//   the mesh of the session diagnosed, before the actions of the failure's own kind;
+//   the mesh of the session diagnosed, before the actions of the failure's own kind; a failure
+//   among pieces the arrangement never placed gets no action at all;
 // - apply_action changes what the action says and nothing else.
 
 #include <QtTest>
@@ -138,6 +139,17 @@ class DiagnosisTest : public QObject {
     QVERIFY(diagnosis.actions[0].key() != diagnosis.actions[1].key());
     // Then the batch at fault (the pocket's) with other starts.
     QCOMPARE(diagnosis.actions[3].resume_batch, 1);
+  }
+
+  void piecesNeverArrangedGetNoAttempt() {
+    const Garment garment = four_pieces();
+    SessionReport report = two_batches();
+    report.batches.pop_back();  // the pocket was never arranged
+    QualityVerdict verdict;
+    verdict.failures.push_back(failure(FailureKind::BodyPenetration, {3}, 40));
+    const Diagnosis diagnosis = diagnose(garment, report, {}, verdict, {}, kFirstPassEdge);
+    QCOMPARE(diagnosis.piece_batch[3], -2);
+    QVERIFY(diagnosis.actions.empty());  // no remesh, no other start: nothing moved it
   }
 
   void aNearMissSettlesLongerFirst() {
