@@ -40,22 +40,6 @@ using namespace garment;
 
 namespace {
 
-// Budgets well below the defaults, for the tests that check control flow rather than results:
-// every phase still solves, only for fewer iterations.
-SessionOptions quick_options() {
-  SessionOptions options;
-  ArrangementParameters& p = options.arrangement;
-  p.align = {20, 30};
-  p.body_round = {4, 6};
-  p.body_final = {15, 20};
-  p.refine = {20, 30};
-  p.settle = {15, 20};
-  p.max_flatten_revisits = 0;
-  p.seed_iterations = 60;
-  p.post_process_iterations = 60;
-  return options;
-}
-
 bool sewn_together(const Garment& garment, int a, int b) {
   for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
     const int pa = garment.vertex_piece(garment.sewing_pairs(k, 0));
@@ -128,7 +112,7 @@ class StudioSessionTest : public QObject {
   void demoRunsToTheEndWithLiveUpdates() {
     // The full budgets in Release; in the sanitizer builds, where they take minutes, the quick
     // ones: the live updates and the end state are what is checked, and every phase still runs.
-    open(test::sanitizer_build() ? quick_options() : SessionOptions{});
+    open(test::sanitizer_build() ? test::quick_options() : SessionOptions{});
     ui::AvatarView* avatar = window_->avatarView();
     avatar->setOrbit(0, 0);
     avatar->frameAll();
@@ -196,7 +180,7 @@ class StudioSessionTest : public QObject {
     // turning inside the phases, not only between them, and no stall of the window comes near the
     // length of the solve. A solve on the GUI thread fails both: its timer would fire about once
     // between phases, and the window would stall for the longest phase. The latencies are printed.
-    open(test::sanitizer_build() ? quick_options() : SessionOptions{}, {720, 450});
+    open(test::sanitizer_build() ? test::quick_options() : SessionOptions{}, {720, 450});
     ui::EventLoopLatencyProbe probe;
     // The machine's own latency first: the same window, nothing running.
     probe.start();
@@ -228,7 +212,7 @@ class StudioSessionTest : public QObject {
   }
 
   void manualSeedThroughTheWidgets() {
-    open(quick_options());
+    open(test::quick_options());
     const Garment& garment = *window_->garment();
     const std::vector<int> automatic = state().automatic_seed.pieces();
     QVERIFY(!automatic.empty());
@@ -297,7 +281,7 @@ class StudioSessionTest : public QObject {
   }
 
   void reorderChangesTheOrderAndReruns() {
-    open(quick_options());
+    open(test::quick_options());
     window_->sessionActions().run_pause->trigger();
     QVERIFY(waitFor([](const ui::SessionState& s) { return s.done; }, 120000));
     const std::vector<int> first = state().order;
@@ -347,7 +331,7 @@ class StudioSessionTest : public QObject {
   }
 
   void stepRunsExactlyOnePhase() {
-    open(quick_options());
+    open(test::quick_options());
     QAction* step = window_->sessionActions().step;
     for (int i = 0; i < 5; ++i) {
       const int completed = state().phases_completed;
@@ -379,7 +363,7 @@ class StudioSessionTest : public QObject {
   void stopMidSolveLeavesAConsistentSession() {
     // The full budgets give long solves to stop in; under the sanitizers the quick ones are long
     // enough, and the run to the end after the stop takes seconds instead of a minute.
-    open(test::sanitizer_build() ? quick_options() : SessionOptions{});
+    open(test::sanitizer_build() ? test::quick_options() : SessionOptions{});
     // Into the first batch's solves (the seed's snapshots come fast and the batch's phases are the
     // longest): step to Align, then run and stop during the solve.
     while (state().phase != Phase::Align) {
@@ -412,7 +396,7 @@ class StudioSessionTest : public QObject {
   }
 
   void badFileShowsAnErrorAndKeepsTheSession() {
-    open(quick_options());
+    open(test::quick_options());
     window_->sessionActions().step->trigger();
     QVERIFY(waitFor([](const ui::SessionState& s) { return s.phases_completed == 1; }, 60000));
     const std::shared_ptr<const Garment> garment = window_->garment();
@@ -441,7 +425,7 @@ class StudioSessionTest : public QObject {
   }
 
   void exportsWriteTheSessionsGarment() {
-    open(quick_options());
+    open(test::quick_options());
     window_->sessionActions().run_pause->trigger();
     QVERIFY(waitFor([](const ui::SessionState& s) { return s.done; }, 120000));
     QTemporaryDir directory;

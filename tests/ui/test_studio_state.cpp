@@ -27,21 +27,6 @@ using namespace garment;
 
 namespace {
 
-// Budgets well below the defaults: these tests check what the window shows, not the garment.
-SessionOptions quick_options() {
-  SessionOptions options;
-  ArrangementParameters& p = options.arrangement;
-  p.align = {20, 30};
-  p.body_round = {4, 6};
-  p.body_final = {15, 20};
-  p.refine = {20, 30};
-  p.settle = {15, 20};
-  p.max_flatten_revisits = 0;
-  p.seed_iterations = 60;
-  p.post_process_iterations = 60;
-  return options;
-}
-
 double seconds(const QElapsedTimer& timer) {
   return timer.nsecsElapsed() * 1e-9;
 }
@@ -64,7 +49,7 @@ class StudioStateTest : public QObject {
       errors_ << title + ": " + message;
     });
     window_->resize(1100, 700);
-    controller_ = std::make_unique<ui::StudioController>(window_.get(), quick_options());
+    controller_ = std::make_unique<ui::StudioController>(window_.get(), test::quick_options());
     QVERIFY(window_->openDemoPattern());
     QVERIFY(window_->openDefaultBody());
     window_->show();

@@ -40,21 +40,6 @@ QString test_file(const char* relative) {
   return QString::fromStdString(test::test_data(relative).string());
 }
 
-// Budgets well below the defaults (as in test_studio_session.cpp): every phase still solves.
-SessionOptions quick_options() {
-  SessionOptions options;
-  ArrangementParameters& p = options.arrangement;
-  p.align = {20, 30};
-  p.body_round = {4, 6};
-  p.body_final = {15, 20};
-  p.refine = {20, 30};
-  p.settle = {15, 20};
-  p.max_flatten_revisits = 0;
-  p.seed_iterations = 60;
-  p.post_process_iterations = 60;
-  return options;
-}
-
 // Pixels of a widget's image within a tolerance of a colour.
 int pixels_near(const QImage& image, const QColor& colour) {
   return test::count_pixels(image,
@@ -230,7 +215,7 @@ class StudioVerdictTest : public QObject {
 
   void theVerdictShownIsTheGarmentsAndANewRunHasNone() {
     open(ui::demo_pattern_path(), QString::fromStdString(default_body_path().string()),
-         quick_options());
+         test::quick_options());
     runToTheEnd();
     if (QTest::currentTestFailed()) return;
     verifyShown(verdictOnTheShownGarment());

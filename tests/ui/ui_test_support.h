@@ -14,6 +14,7 @@
 
 #include "engine/body/body_mesh.h"
 #include "engine/pattern/garment_mesh.h"
+#include "engine/session/session.h"
 #include "ui/bundled_resources.h"
 #include "ui/opengl_format.h"
 #include "ui/pattern_layout.h"
@@ -85,6 +86,22 @@ inline std::shared_ptr<const BodyMesh> sphere_body(const Eigen::Vector3d& centre
   for (std::size_t t = 0; t < triangles.size(); ++t)
     body->triangles.row(static_cast<Eigen::Index>(t)) = triangles[t].transpose();
   return body;
+}
+
+// Budgets well below the defaults, for the tests that check what the window shows and how the
+// controls flow rather than the garment: every phase still solves, only for fewer iterations.
+inline SessionOptions quick_options() {
+  SessionOptions options;
+  ArrangementParameters& p = options.arrangement;
+  p.align = {20, 30};
+  p.body_round = {4, 6};
+  p.body_final = {15, 20};
+  p.refine = {20, 30};
+  p.settle = {15, 20};
+  p.max_flatten_revisits = 0;
+  p.seed_iterations = 60;
+  p.post_process_iterations = 60;
+  return options;
 }
 
 inline std::shared_ptr<const Garment> demo_garment() {
