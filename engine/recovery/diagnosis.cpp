@@ -48,17 +48,6 @@ class ActionList {
   std::vector<RecoveryAction> actions_;
 };
 
-// Another start for the batch at fault and every batch after it.
-void add_other_starts(ActionList& actions, int batch, const std::string& why) {
-  const int from = std::max(batch, 0);
-  // In the order of what they improved on the even half's 40 failures (60 million work, each
-  // action on any attempt): stiffer bending 13 of 42 tries, longer solves 6 of 17, the rigid
-  // start 3 of 26.
-  actions.add({RecoveryActionKind::StiffenBending, from, {}, {}, why + ": stiffer bending"});
-  actions.add({RecoveryActionKind::LongerSolves, from, {}, {}, why + ": longer solves"});
-  actions.add({RecoveryActionKind::RigidStart, from, {}, {}, why + ": rigid start"});
-}
-
 }  // namespace
 
 const char* to_string(RecoveryActionKind kind) {
@@ -69,12 +58,6 @@ const char* to_string(RecoveryActionKind kind) {
       return "reseed";
     case RecoveryActionKind::SettleLonger:
       return "settle_longer";
-    case RecoveryActionKind::StiffenBending:
-      return "stiffen_bending";
-    case RecoveryActionKind::LongerSolves:
-      return "longer_solves";
-    case RecoveryActionKind::RigidStart:
-      return "rigid_start";
     case RecoveryActionKind::Remesh:
       return "remesh";
   }
@@ -195,10 +178,6 @@ Diagnosis diagnose(const Garment& garment, const SessionReport& report,
                      std::string(seed_at_fault ? "the seed's pieces fail" : "pieces misplaced") +
                          ": seed " + seed.reason});
 
-  if (earliest < batch_count)
-    add_other_starts(actions, earliest,
-                     earliest < 0 ? "failure from the seed on"
-                                  : "failure from batch " + std::to_string(earliest) + " on");
   diagnosis.actions = actions.take();
   return diagnosis;
 }
@@ -217,20 +196,6 @@ SessionOptions apply_action(const RecoveryAction& action, SessionOptions options
       parameters.post_process_iterations *= 2;
       parameters.post_process_extra_iterations *= 2;
       parameters.post_process_fold_iterations *= 2;
-      break;
-    case RecoveryActionKind::StiffenBending:
-      parameters.energy.bending_stiffness *= 2.0;
-      break;
-    case RecoveryActionKind::LongerSolves:
-      for (StepBudget* budget : {&parameters.align, &parameters.body_round, &parameters.body_final,
-                                 &parameters.refine, &parameters.settle}) {
-        budget->first *= 2;
-        budget->revisit *= 2;
-      }
-      break;
-    case RecoveryActionKind::RigidStart:
-      parameters.seam_drape.sideways_below = -1.0;
-      parameters.limb_wrap.reach = 0.0;
       break;
     case RecoveryActionKind::Remesh:
       break;  // the options stay; the scene changes (recovery.cpp)

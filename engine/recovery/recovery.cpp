@@ -33,9 +33,9 @@ struct Attempt {
 };
 
 // What an action on `base` is likely to cost: the work `base` did from the checkpoint the action
-// resumes, twice that for the actions that double the iterations, and for a new mesh all of it in
-// proportion to the vertices (the square of the edge lengths' ratio). Deterministic, so that which
-// actions fit the budget does not depend on the machine.
+// resumes, twice that for the longer settle (its iterations doubled), and for a new mesh all of it
+// in proportion to the vertices (the square of the edge lengths' ratio). Deterministic, so that
+// which actions fit the budget does not depend on the machine.
 double estimated_work(const Session& base, const RecoveryAction& action) {
   if (action.kind == RecoveryActionKind::Remesh) {
     const double ratio = base.scene().garment->target_edge_length / action.edge_length;
@@ -43,9 +43,7 @@ double estimated_work(const Session& base, const RecoveryAction& action) {
   }
   const double after =
       base.report().work - base.checkpoint_work(base.checkpoint_before_batch(action.resume_batch));
-  const bool doubled = action.kind == RecoveryActionKind::SettleLonger ||
-                       action.kind == RecoveryActionKind::LongerSolves;
-  return doubled ? 2.0 * after : after;
+  return action.kind == RecoveryActionKind::SettleLonger ? 2.0 * after : after;
 }
 
 GarmentChecker make_checker(const Garment& garment, const BodyReference* body) {
@@ -129,9 +127,11 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
       if (std::find(settings.excluded.begin(), settings.excluded.end(), action.kind) !=
           settings.excluded.end())
         continue;
-      // An action that would take the attempts past their work is passed over for a cheaper one.
+      // An action that would take the attempts, or the garment with its first pass, past their
+      // work is passed over for a cheaper one.
       const double cost = estimated_work(*result.session, action);
-      if (planned + cost > settings.work) {
+      if (planned + cost > settings.work ||
+          first_pass->report().work + planned + cost > settings.garment_work) {
         over_budget = true;
         continue;
       }
