@@ -79,7 +79,7 @@ void run_attempt(const Session& base, const BodyReference* body, Observer* obser
 }  // namespace
 
 RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyReference* body,
-                       const RecoverySettings& settings, Observer* observer) {
+                       const RecoverySettings& settings, RecoveryObserver* observer) {
   const Scene& scene = first_pass->scene();
   const Garment& garment = *scene.garment;
   RecoveryResult result;
@@ -179,6 +179,9 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
       attempt.record.from_attempt = base;
       used += attempt.record.work;
       result.attempts.push_back(attempt.record);
+      if (observer)
+        observer->attempt_finished(static_cast<int>(result.attempts.size()) - 1, attempt.record,
+                                   attempt.session);
       if (better_rank(attempt.record.rank, rank_verdict(result.verdict))) {
         result.chosen = static_cast<int>(result.attempts.size()) - 1;
         result.session = attempt.session;

@@ -63,10 +63,24 @@ struct RecoveryResult {
   QualityVerdict verdict;
 };
 
+// Told of each attempt as its round ends, on the thread that called recover(), in the order of
+// RecoveryResult::attempts (the studio lists them live and lets the user take any of them).
+class RecoveryObserver : public Observer {
+ public:
+  // index: the attempt's in RecoveryResult::attempts (1 for the first after the first pass);
+  // session: the attempt's, run to its end (its scene's garment is a remesh's own).
+  virtual void attempt_finished(int index, const AttemptRecord& attempt,
+                                std::shared_ptr<Session> session) {
+    (void)index;
+    (void)attempt;
+    (void)session;
+  }
+};
+
 // first_pass: a session run to its end. body: the scene's body for the verdict (may be null: no
 // body metrics); each attempt's garment is measured against it with the expected regions its
 // pieces' names give (expected_regions_from_names).
 RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyReference* body,
-                       const RecoverySettings& settings = {}, Observer* observer = nullptr);
+                       const RecoverySettings& settings = {}, RecoveryObserver* observer = nullptr);
 
 }  // namespace garment

@@ -7,7 +7,8 @@
 //   come first and would spend the work);
 // - --attempts 1 (settings.attempts = 1) keeps the first pass and makes no attempt;
 // - the recovery is deterministic: two recoveries from the same first pass, attempts running
-//   concurrently on two threads, give the same positions to the bit;
+//   concurrently on two threads, give the same positions to the bit; an observer is told of each
+//   attempt in order, with its session (the chosen garment's among them);
 // - a recovery whose work budget is spent makes no attempt and says so;
 // - gc_0477 on f_smpl_average_A40 (of the judging half, used here as a fixed case, not for
 //   tuning): its left cuff's front crosses the seed; the diagnosis selects it alone, before the
@@ -70,6 +71,19 @@ const CuffFixture& cuff_fixture() {
   return made;
 }
 
+// What a RecoveryObserver was told.
+struct AttemptLog : RecoveryObserver {
+  std::vector<int> indices;
+  std::vector<std::string> actions;
+  std::vector<std::shared_ptr<Session>> sessions;
+  void attempt_finished(int index, const AttemptRecord& attempt,
+                        std::shared_ptr<Session> session) override {
+    indices.push_back(index);
+    actions.push_back(attempt.action);
+    sessions.push_back(std::move(session));
+  }
+};
+
 }  // namespace
 
 class RecoveryTest : public QObject {
@@ -121,7 +135,8 @@ class RecoveryTest : public QObject {
     RecoverySettings settings;
     settings.threads = 2;
     const RecoveryResult a = recover(f.first_pass, f.body.get(), settings);
-    const RecoveryResult b = recover(f.first_pass, f.body.get(), settings);
+    AttemptLog log;
+    const RecoveryResult b = recover(f.first_pass, f.body.get(), settings, &log);
     QCOMPARE(a.attempts.size(), b.attempts.size());
     QCOMPARE(a.chosen, b.chosen);
     const Eigen::MatrixX3d& pa = a.session->positions();
@@ -130,6 +145,16 @@ class RecoveryTest : public QObject {
     QVERIFY(std::memcmp(pa.data(), pb.data(), sizeof(double) * pa.size()) == 0);
     for (std::size_t i = 0; i < a.attempts.size(); ++i)
       QCOMPARE(a.attempts[i].work, b.attempts[i].work);
+
+    // The observer was told of every attempt after the first pass, in order, with its session.
+    QVERIFY(b.attempts.size() >= 2);
+    QCOMPARE(log.indices.size(), b.attempts.size() - 1);
+    for (std::size_t i = 0; i < log.indices.size(); ++i) {
+      QCOMPARE(log.indices[i], static_cast<int>(i) + 1);
+      QCOMPARE(log.actions[i], b.attempts[i + 1].action);
+      QVERIFY(log.sessions[i] && log.sessions[i]->done());
+    }
+    if (b.chosen > 0) QCOMPARE(log.sessions[b.chosen - 1].get(), b.session.get());
   }
 
   void aReorderRemovesACrossing() {
