@@ -52,6 +52,7 @@ class AvatarView : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   void setBody(std::shared_ptr<const BodyMesh> body);
   // The garment's topology and pieces. The garment stays hidden until positions arrive.
   void setGarment(std::shared_ptr<const Garment> garment);
+  const std::shared_ptr<const Garment>& garment() const { return garment_; }
   // #V×3 positions of every garment vertex (metres). Only the latest is kept and drawn at the next
   // paint; nullptr, or a matrix whose row count is not the garment's vertex count, hides the
   // garment.

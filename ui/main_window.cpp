@@ -358,13 +358,16 @@ void MainWindow::setArrangementStatus(const ArrangementStatus& status) {
 }
 
 void MainWindow::setQualityVerdict(const std::optional<QualityVerdict>& verdict,
-                                   const QStringList& piece_names) {
-  quality_panel_->setVerdict(verdict, piece_names);
+                                   const QStringList& piece_names,
+                                   const std::optional<CannotFit>& cannot_fit) {
+  quality_panel_->setVerdict(verdict, piece_names, cannot_fit);
 }
 
 void MainWindow::clearArrangement() {
   if (garment_) {
-    // Until an arrangement runs, the 3D view shows the pieces where the file puts them.
+    // Until an arrangement runs, the 3D view shows the pieces where the file puts them (on the
+    // pattern's own mesh, whatever mesh a fix arranged).
+    avatar_view_->setGarment(garment_);
     avatar_view_->setGarmentPositions(
         std::make_shared<const Eigen::MatrixX3d>(flat_placement(*garment_)));
     pattern_view_->setPieceStates({});
@@ -372,6 +375,7 @@ void MainWindow::clearArrangement() {
   order_list_->clear();
   status_bar_->setStatus({});
   setQualityVerdict(std::nullopt, {});
+  quality_panel_->setAttempts({}, -1, false);
 }
 
 void MainWindow::selectPieces(const QList<int>& pieces) {

@@ -20,6 +20,7 @@
 #include "engine/body/body.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/quality/verdict.h"
+#include "engine/recovery/cannot_fit.h"
 #include "ui/arrangement_status_bar.h"
 #include "ui/body_location_marker.h"
 #include "ui/classifier_table_model.h"
@@ -87,11 +88,13 @@ class MainWindow : public QMainWindow {
   void setBodyLocations(std::vector<BodyLocationMarker> locations);
   void setArrangementOrder(const std::vector<int>& pieces);
   void setArrangementStatus(const ArrangementStatus& status);
-  // The Quality panel's verdict (nullopt: nothing judged); piece_names in the verdict's garment's
-  // piece order. Opening a pattern or a body clears it, and the status bar's verdict (and the
-  // arrangement shown: positions, piece states, order and progress).
+  // The Quality panel's verdict (nullopt: nothing judged) and the design's misfit when it cannot
+  // fit; piece_names in the verdict's garment's piece order. Opening a pattern or a body clears it,
+  // and the status bar's verdict (and the arrangement shown: positions, piece states, order and
+  // progress).
   void setQualityVerdict(const std::optional<QualityVerdict>& verdict,
-                         const QStringList& piece_names);
+                         const QStringList& piece_names,
+                         const std::optional<CannotFit>& cannot_fit = std::nullopt);
 
   void selectPieces(const QList<int>& pieces);  // in both views; does not emit
   QList<int> selectedPieces() const;

@@ -59,6 +59,26 @@ class SessionThread::Observer : public SessionObserver {
   double fraction_ = -1.0;
 };
 
+// The recovery's observer: the fix stops when a command interrupts (Stop, or the window closing),
+// and each attempt is listed in the window as its round ends.
+class SessionThread::FixObserver : public RecoveryObserver {
+ public:
+  explicit FixObserver(SessionThread& thread) : thread_(thread) {}
+
+  bool cancel_requested() const override { return thread_.interrupt_.load(); }
+
+  void attempt_finished(int index, const AttemptRecord& attempt,
+                        std::shared_ptr<Session> session) override {
+    if (index != static_cast<int>(thread_.attempts_.size())) return;  // not this fix's order
+    thread_.attempts_.push_back(attempt);
+    thread_.attempt_sessions_.push_back(std::move(session));
+    thread_.publishState();
+  }
+
+ private:
+  SessionThread& thread_;
+};
+
 SessionThread::SessionThread(QObject* parent) : QThread(parent) {
   qRegisterMetaType<SessionUpdate>();
   qRegisterMetaType<SessionState>();
@@ -153,6 +173,16 @@ void SessionThread::restoreCheckpoint(int index) {
   post(std::move(command), true);
 }
 
+void SessionThread::fixAutomatically() {
+  post(Command(Command::Fix), false);
+}
+
+void SessionThread::useAttempt(int index) {
+  Command command(Command::UseAttempt);
+  command.index = index;
+  post(std::move(command), true);
+}
+
 void SessionThread::exportTo(ExportKind kind, const QString& path) {
   Command command(Command::Export);
   command.export_kind = kind;
@@ -194,6 +224,7 @@ void SessionThread::run() {
     stepOnce(observer);
   }
   // The session is the worker's: it ends here too.
+  attempt_sessions_.clear();
   checker_.reset();
   body_reference_.reset();
   session_.reset();
@@ -252,13 +283,15 @@ void SessionThread::execute(const Command& command) {
         running_ = false;
         steps_requested_ = 0;
         session_.reset();
+        forgetAttempts();
         options_ = command.options;
         verdict_.reset();
+        cannot_fit_.reset();
         checker_.reset();
         body_reference_.reset();
         scene_.reset();
         scene_ = make_scene(command.garment, command.body);
-        session_ = std::make_unique<Session>(scene_, options_);
+        session_ = std::make_shared<Session>(scene_, options_);
         phases_completed_ = 0;
         last_iterations_ = 0;
         last_phase_.clear();
@@ -286,14 +319,17 @@ void SessionThread::execute(const Command& command) {
       case Command::Reset:
         running_ = false;
         steps_requested_ = 0;
+        forgetAttempts();
         session_->restore(0);
         break;
       case Command::Reseed:
+        forgetAttempts();
         session_->reseed(command.seed);
         running_ = command.run_after;
         steps_requested_ = 0;
         break;
       case Command::Reorder:
+        forgetAttempts();
         session_->reorder(command.order);
         running_ = command.run_after;
         steps_requested_ = 0;
@@ -301,12 +337,21 @@ void SessionThread::execute(const Command& command) {
       case Command::Restore:
         if (command.index < 0 || command.index >= static_cast<int>(session_->checkpoint_count()))
           return;
+        forgetAttempts();
         session_->restore(static_cast<std::size_t>(command.index));
         running_ = false;
         steps_requested_ = 0;
         break;
       case Command::Export:
         exportFile(command.export_kind, command.path);
+        return;
+      case Command::Fix:
+        fix();
+        return;
+      case Command::UseAttempt:
+        if (command.index < 0 || command.index >= static_cast<int>(attempt_sessions_.size()))
+          return;
+        showAttempt(command.index);
         return;
     }
   } catch (const std::exception& error) {
@@ -358,6 +403,74 @@ void SessionThread::exportFile(ExportKind kind, const QString& path) {
   sendToGui([this, path] { Q_EMIT exportFinished(path, QString()); });
 }
 
+void SessionThread::fix() {
+  if (!session_->done() || !verdict_ || verdict_->ok() || cannot_fit_) return;
+  running_ = false;
+  steps_requested_ = 0;
+  forgetAttempts();
+  AttemptRecord first;
+  first.action = "first pass";
+  first.verdict = *verdict_;
+  first.rank = rank_verdict(*verdict_);
+  first.work = session_->report().work;
+  first.seconds = session_->report().seconds;
+  attempts_.push_back(std::move(first));
+  attempt_sessions_.push_back(session_);
+  attempt_shown_ = 0;
+  fixing_ = true;
+  publishState();
+  RecoverySettings settings;
+  // Every core but one, as the arrangement's phases (stepOnce): the window stays responsive.
+  settings.threads = std::max(1, QThread::idealThreadCount() - 1);
+  checker();  // builds body_reference_
+  FixObserver observer(*this);
+  try {
+    const RecoveryResult result = recover(session_, body_reference_.get(), settings, &observer);
+    attempts_ = result.attempts;
+    fixing_ = false;
+    showAttempt(std::min(result.chosen, static_cast<int>(attempt_sessions_.size()) - 1));
+  } catch (const std::exception& error) {
+    fixing_ = false;
+    const QString message = QString::fromUtf8(error.what());
+    sendToGui([this, message] { Q_EMIT failed(tr("Fix automatically"), message); });
+    showAttempt(0);
+  }
+}
+
+void SessionThread::showAttempt(int index) {
+  session_ = attempt_sessions_[static_cast<std::size_t>(index)];
+  attempt_shown_ = index;
+  if (session_->shared_scene() != scene_) {
+    // A remesh's garment: the checker reads the scene's garment, so it goes with it.
+    checker_.reset();
+    body_reference_.reset();
+    scene_ = session_->shared_scene();
+  }
+  verdict_ = attempts_[static_cast<std::size_t>(index)].verdict;
+  running_ = false;
+  steps_requested_ = 0;
+  // The attempt's own checkpoints (a resumed attempt keeps those between batches before it).
+  history_ = QStringList{QStringLiteral("0. start")};
+  for (std::size_t i = 1; i < session_->checkpoint_count(); ++i) {
+    const Phase phase = session_->checkpoint_phase(i);
+    history_ << (phase == Phase::Done
+                     ? tr("%1. done (%2)")
+                           .arg(i)
+                           .arg(QString::fromStdString(
+                               attempts_[static_cast<std::size_t>(index)].action))
+                     : tr("%1. before %2").arg(i).arg(QString::fromUtf8(to_string(phase))));
+  }
+  last_cancelled_ = false;
+  publishUpdate();
+  publishState();
+}
+
+void SessionThread::forgetAttempts() {
+  attempts_.clear();
+  attempt_sessions_.clear();
+  attempt_shown_ = -1;
+}
+
 const GarmentChecker& SessionThread::checker() {
   if (!checker_) {
     body_reference_ = std::make_unique<BodyReference>(scene_->body->mesh);
@@ -401,11 +514,21 @@ void SessionThread::publishState() {
   // Judged once per ending: a command that changes a done session's garment (reset, reseed,
   // reorder, an earlier checkpoint) leaves the session not done, and every command is followed by
   // a state; the others keep the garment that was judged.
-  if (!state.done)
+  if (!state.done) {
     verdict_.reset();
-  else if (!verdict_)
-    verdict_ = judge_garment(*scene_->garment, checker().measure(session_->positions()));
+    cannot_fit_.reset();
+  } else if (!verdict_) {
+    const GarmentMetrics metrics = checker().measure(session_->positions());
+    verdict_ = judge_garment(*scene_->garment, metrics);
+    if (verdict_->failed(FailureKind::Strain))
+      cannot_fit_ =
+          find_cannot_fit(*scene_->garment, metrics, *scene_->body, QualityThresholds{}.max_strain);
+  }
   state.verdict = verdict_;
+  state.cannot_fit = cannot_fit_;
+  state.attempts = attempts_;
+  state.attempt_shown = attempt_shown_;
+  state.fixing = fixing_;
   sendToGui([this, state] { Q_EMIT stateChanged(state); });
 }
 

@@ -34,6 +34,7 @@
 
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
+#include "engine/recovery/recovery.h"
 #include "engine/session/session.h"
 
 namespace garment::ui {
@@ -74,6 +75,14 @@ struct SessionState {
   // The garment's quality once the session is done (nullopt before): judged on the worker, so
   // that the window never shows an ended arrangement without saying whether it passes.
   std::optional<QualityVerdict> verdict;
+  // A design no arrangement can pass (recovery/cannot_fit.h), found when a done garment fails on
+  // strain: the opening, its length and the body's.
+  std::optional<CannotFit> cannot_fit;
+  // Fix automatically (recovery/recovery.h): the first pass and every attempt so far, live while
+  // `fixing`; the garment shown is attempts[attempt_shown] (-1: no fix since the last change).
+  std::vector<AttemptRecord> attempts;
+  int attempt_shown = -1;
+  bool fixing = false;
 };
 
 class SessionThread : public QThread {
@@ -99,6 +108,13 @@ class SessionThread : public QThread {
   void reorder(std::vector<int> order, bool run_after);
   // Goes back to checkpoint `index` (of SessionState::history) and holds there.
   void restoreCheckpoint(int index);
+  // Recovers a done garment that fails its verdict (recovery/recovery.h: diagnosed attempts on
+  // every core but one, within the recovery's work budget), each attempt listed as it ends; the
+  // best is shown at the end. Stop ends it early, keeping the best so far.
+  void fixAutomatically();
+  // Shows attempt `index` of the last fix (SessionState::attempts) instead; later commands act on
+  // it (a remesh's garment has its own mesh).
+  void useAttempt(int index);
   // Writes the current (last completed phase's) garment; reports through exportFinished.
   void exportTo(ExportKind kind, const QString& path);
 
@@ -120,7 +136,20 @@ class SessionThread : public QThread {
 
  private:
   struct Command {
-    enum Kind { Open, Run, Pause, Step, Stop, Reset, Reseed, Reorder, Restore, Export };
+    enum Kind {
+      Open,
+      Run,
+      Pause,
+      Step,
+      Stop,
+      Reset,
+      Reseed,
+      Reorder,
+      Restore,
+      Export,
+      Fix,
+      UseAttempt
+    };
     explicit Command(Kind k) : kind(k) {}
     Kind kind;
     std::shared_ptr<const Garment> garment;
@@ -134,6 +163,7 @@ class SessionThread : public QThread {
     QString path;
   };
   class Observer;
+  class FixObserver;
 
   void post(Command command, bool interrupt);
   // Worker thread: queues one emission for the GUI thread.
@@ -146,6 +176,9 @@ class SessionThread : public QThread {
   void publishState();
   void publishUpdate();
   void exportFile(ExportKind kind, const QString& path);
+  void fix();                   // worker thread: Command::Fix
+  void showAttempt(int index);  // worker thread: makes attempt `index` the session
+  void forgetAttempts();        // the session changed: the last fix's attempts no longer apply
   const GarmentChecker& checker();
   QString checkpointLabel(Phase ran) const;
   // The clock the status bar shows: the seconds the phases that led to the current checkpoint took,
@@ -168,13 +201,19 @@ class SessionThread : public QThread {
 
   // Worker thread only.
   std::shared_ptr<const Scene> scene_;
-  std::unique_ptr<Session> session_;
+  std::shared_ptr<Session> session_;  // shared with the last fix's attempts
   // The scene's quality checker, built when the first verdict or report needs it and kept with the
   // scene (it reads the scene's garment and body_reference_, declared before it so that it goes
   // first).
   std::unique_ptr<BodyReference> body_reference_;
   std::unique_ptr<GarmentChecker> checker_;
   std::optional<QualityVerdict> verdict_;  // of the done session's garment
+  std::optional<CannotFit> cannot_fit_;    // of the done session's garment
+  // The last fix: its records and sessions, the first pass first (index-aligned).
+  std::vector<AttemptRecord> attempts_;
+  std::vector<std::shared_ptr<Session>> attempt_sessions_;
+  int attempt_shown_ = -1;
+  bool fixing_ = false;
   SessionOptions options_;
   bool running_ = false;
   int steps_requested_ = 0;

@@ -14,6 +14,7 @@
 
 #include "engine/seeding/seed_class.h"
 #include "ui/arrangement_order_list.h"
+#include "ui/avatar_view.h"
 #include "ui/main_window.h"
 #include "ui/manual_seed_panel.h"
 #include "ui/quality_panel.h"
@@ -99,6 +100,10 @@ StudioController::StudioController(MainWindow* window, SessionOptions options)
 
   connect(window_->orderList(), &ArrangementOrderList::orderChanged, this,
           &StudioController::orderDragged);
+  connect(window_->qualityPanel(), &QualityPanel::fixRequested, thread_.get(),
+          &SessionThread::fixAutomatically);
+  connect(window_->qualityPanel(), &QualityPanel::attemptChosen, thread_.get(),
+          &SessionThread::useAttempt);
   connect(window_, &MainWindow::garmentOpened, this, &StudioController::openSession);
   connect(window_, &MainWindow::bodyOpened, this, &StudioController::openSession);
 
@@ -181,6 +186,12 @@ void StudioController::applyState(const SessionState& state) {
     window_->statusBar()->clearMessage();
   }
   state_ = state;
+  // A remesh's garment (Fix automatically) has its own mesh: the 3D view draws it with its
+  // topology; the pattern view keeps the pattern's pieces, which are the same.
+  const std::shared_ptr<const Garment>& shown = window_->avatarView()->garment();
+  if (state.scene && shown && state.scene->garment != shown &&
+      state.scene->garment->pieces.size() == shown->pieces.size())
+    window_->avatarView()->setGarment(state.scene->garment);
   showClassification(state);
   seed_panel_->setAutomaticSeed(seedText(state.automatic_seed));
   seed_panel_->setSeedInUse((state.seed.manual ? tr("manual: ") : tr("classifier: ")) +
@@ -210,7 +221,8 @@ void StudioController::showVerdict(const SessionState& state, ArrangementStatus&
   if (state.scene)
     for (const Piece& piece : state.scene->garment->pieces)
       names << QString::fromStdString(piece.name);
-  window_->setQualityVerdict(state.verdict, names);
+  window_->setQualityVerdict(state.verdict, names, state.cannot_fit);
+  window_->qualityPanel()->setAttempts(state.attempts, state.attempt_shown, state.fixing);
   status.quality_failures.reset();
   if (!state.verdict) return;
   QStringList failures;
@@ -221,11 +233,12 @@ void StudioController::showVerdict(const SessionState& state, ArrangementStatus&
 
 void StudioController::updateActions() {
   const SessionActions& actions = window_->sessionActions();
-  const bool ready = state_.has_session && !opening_;
+  // While a fix runs only Stop acts: the other commands would wait for it to end.
+  const bool ready = state_.has_session && !opening_ && !state_.fixing;
   actions.run_pause->setEnabled(ready && (state_.running || !state_.done));
   actions.run_pause->setText(state_.running ? tr("Pause") : tr("Run"));
   actions.step->setEnabled(ready && !state_.running && !state_.done);
-  actions.stop->setEnabled(ready && state_.running);
+  actions.stop->setEnabled(state_.has_session && (state_.running || state_.fixing));
   actions.reset->setEnabled(ready && state_.history.size() > 1);
   for (QAction* action : {actions.export_obj, actions.export_glb, actions.export_report})
     action->setEnabled(ready);

@@ -100,6 +100,7 @@ class Session {
   ~Session();
 
   const Scene& scene() const { return *scene_; }
+  std::shared_ptr<const Scene> shared_scene() const { return scene_; }
   const SessionOptions& options() const { return options_; }
   Phase phase() const { return state_.phase; }
   bool done() const { return state_.phase == Phase::Done; }

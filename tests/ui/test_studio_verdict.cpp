@@ -8,6 +8,11 @@
 // - whatever the verdict (quick budgets, also in the sanitizer builds), what the window shows is
 //   the verdict on the garment it shows, judged here from its positions, and a new run has none
 //   until it ends.
+// - Fix automatically on gc_0477: the attempts appear in the panel, the best of them is shown (its
+//   own mesh when a remesh won) with the verdict judged here on that garment, the first pass can
+//   be shown again from the list, and a fix is offered once per garment;
+// - the skirt with a 60 cm waistband (a template, tests/data/patterns/recovery/) shows a
+//   cannot_fit row with both lengths first, and no fix is offered.
 // The premises (gc_0477 fails, the demo passes) are checked on the garment itself, not assumed.
 
 #include <tbb/global_control.h>
@@ -15,6 +20,7 @@
 #include <QAction>
 #include <QEventLoop>
 #include <QLabel>
+#include <QPushButton>
 #include <QSignalSpy>
 #include <QTreeWidget>
 #include <QtTest>
@@ -23,6 +29,7 @@
 #include "engine/body/default_body.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
+#include "engine/recovery/verdict_rank.h"
 #include "support/test_environment.h"
 #include "support/test_paths.h"
 #include "tests/ui/ui_test_support.h"
@@ -98,9 +105,10 @@ class StudioVerdictTest : public QObject {
     QVERIFY2(errors_.isEmpty(), qPrintable(errors_.join("\n")));
   }
 
-  // The verdict on the garment the window shows, judged here with a checker of the test's own.
+  // The verdict on the garment the window shows (in 3D: a fix may show another mesh), judged here
+  // with a checker of the test's own.
   QualityVerdict verdictOnTheShownGarment() const {
-    const Garment& garment = *window_->garment();
+    const Garment& garment = *window_->avatarView()->garment();
     const BodyReference body(window_->body()->mesh);
     return judge_garment(garment, measure_garment(garment, *controller_->lastUpdate().positions,
                                                   &body, expected_regions_from_names(garment)));
@@ -114,8 +122,10 @@ class StudioVerdictTest : public QObject {
     const ui::QualityPanel* panel = window_->qualityPanel();
     QVERIFY(panel->judged());
     QCOMPARE(panel->rows().size(), expected.failures.size());
+    QCOMPARE(controller_->lastUpdate().positions->rows(),
+             window_->avatarView()->garment()->vertex_count());
     QCOMPARE(panel->failureList()->topLevelItemCount(), static_cast<int>(expected.failures.size()));
-    const Garment& garment = *window_->garment();
+    const Garment& garment = *window_->avatarView()->garment();
     for (std::size_t i = 0; i < expected.failures.size(); ++i) {
       const QualityFailure& failure = expected.failures[i];
       const ui::QualityRow& row = panel->rows()[i];
@@ -198,6 +208,84 @@ class StudioVerdictTest : public QObject {
     QVERIFY(
         waitFor([](const ui::SessionState& s) { return !s.done && s.history.size() == 1; }, 60000));
     verifyNoVerdict();
+  }
+
+  void fixAutomaticallyShowsTheBestAttempt() {
+    if (test::sanitizer_build())
+      QSKIP("a sanitizer build: whole sessions at full budgets are checked in the Release run");
+    open(test_file("patterns/recovery/gc_0477_specification.json"),
+         test_file("bodies/f_smpl_average_A40.obj"), {});
+    runToTheEnd();
+    if (QTest::currentTestFailed()) return;
+    const QualityVerdict first = verdictOnTheShownGarment();
+    QVERIFY2(!first.ok(), "gc_0477's first pass is expected to fail");
+    ui::QualityPanel* panel = window_->qualityPanel();
+    QVERIFY(panel->fixButton()->isVisible());
+    QVERIFY(panel->fixButton()->isEnabled());
+    QVERIFY(panel->attemptRows().empty());
+    const int first_vertices = window_->garment()->vertex_count();
+
+    QTest::mouseClick(panel->fixButton(), Qt::LeftButton);
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.fixing; }, 60000));
+    // While it runs: only Stop acts, and the first pass is listed.
+    QVERIFY(window_->sessionActions().stop->isEnabled());
+    QVERIFY(!window_->sessionActions().reset->isEnabled());
+    QVERIFY(!panel->fixButton()->isEnabled());
+    QCOMPARE(panel->attemptRows().front().action, QString("first pass"));
+    QVERIFY(waitFor([](const ui::SessionState& s) { return !s.fixing; }, 900000));
+    QVERIFY2(errors_.isEmpty(), qPrintable(errors_.join("\n")));
+
+    const ui::SessionState& fixed = state();
+    QVERIFY(fixed.attempts.size() >= 2);  // not a design that cannot fit: attempts were made
+    QCOMPARE(panel->attemptRows().size(), fixed.attempts.size());
+    QCOMPARE(panel->attemptList()->topLevelItemCount(), static_cast<int>(fixed.attempts.size()));
+    for (const ui::AttemptRow& row : panel->attemptRows())
+      qInfo("gc_0477 fix: %s -> %s", qPrintable(row.action), qPrintable(row.result));
+    // The one shown is the best by the order of verdicts, and in bold.
+    const int shown = fixed.attempt_shown;
+    QVERIFY(shown >= 0 && shown < static_cast<int>(fixed.attempts.size()));
+    for (const AttemptRecord& attempt : fixed.attempts)
+      QVERIFY(!better_rank(attempt.rank, fixed.attempts[static_cast<std::size_t>(shown)].rank));
+    QVERIFY(panel->attemptRows()[static_cast<std::size_t>(shown)].shown);
+    QVERIFY(panel->attemptList()->topLevelItem(shown)->font(0).bold());
+    // What the window says is the verdict on the garment it shows, judged here.
+    const QualityVerdict best = verdictOnTheShownGarment();
+    QCOMPARE(best.ok(), fixed.attempts[static_cast<std::size_t>(shown)].verdict.ok());
+    QCOMPARE(best.failures.size(), fixed.verdict->failures.size());
+    verifyShown(best);
+    if (QTest::currentTestFailed()) return;
+    QVERIFY(!panel->fixButton()->isEnabled());  // once per garment
+
+    // The first pass again, from the list: its mesh and its failures.
+    QTreeWidget* list = panel->attemptList();
+    list->setCurrentItem(list->topLevelItem(0));
+    Q_EMIT list->itemActivated(list->topLevelItem(0), 0);
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.attempt_shown == 0; }, 60000));
+    QCOMPARE(window_->avatarView()->garment()->vertex_count(), first_vertices);
+    verifyShown(verdictOnTheShownGarment());
+    QCOMPARE(panel->rows().size(), first.failures.size());
+  }
+
+  void aDesignThatCannotFitSaysSo() {
+    if (test::sanitizer_build())
+      QSKIP("a sanitizer build: whole sessions at full budgets are checked in the Release run");
+    open(test_file("patterns/recovery/skirts__skirt_waistband.json"),
+         test_file("bodies/f_smpl_average_A40.obj"), {});
+    runToTheEnd();
+    if (QTest::currentTestFailed()) return;
+    const ui::SessionState& ended = state();
+    QVERIFY2(ended.cannot_fit.has_value(), "the 60 cm waistband is expected not to fit");
+    const ui::QualityPanel* panel = window_->qualityPanel();
+    QVERIFY(!panel->rows().empty());
+    const ui::QualityRow& row = panel->rows().front();
+    QCOMPARE(row.kind, QString("cannot_fit"));
+    qInfo("skirt: %s", qPrintable(row.message));
+    // Both lengths, in centimetres, as the report's numbers give them.
+    QVERIFY(row.message.contains(QString::number(100.0 * ended.cannot_fit->opening_m, 'f', 1)));
+    QVERIFY(row.message.contains(QString::number(100.0 * ended.cannot_fit->body_m, 'f', 1)));
+    QCOMPARE(panel->rows().size(), ended.verdict->failures.size() + 1);
+    QVERIFY(!panel->fixButton()->isEnabled());
+    QVERIFY(panel->summaryText().contains("cannot fit"));
   }
 
   void aCleanGarmentShowsOk() {
