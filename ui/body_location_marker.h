@@ -14,6 +14,9 @@ struct BodyLocationMarker {
   std::string name;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // metres, body frame
   Eigen::Vector3d axis = Eigen::Vector3d::UnitY();   // unit length
+  // A cylinder's radius (0 for a plane): its centre lies this deep inside the limb, and the view
+  // draws it as if on the limb's surface.
+  double radius = 0.0;
 };
 
 // Cylinders are drawn with their axis, planes with their normal.

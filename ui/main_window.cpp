@@ -171,6 +171,8 @@ void MainWindow::createActions() {
     avatar_view_->frameAll();
   });
   frame_all->setShortcut(QKeySequence(Qt::Key_F));
+  frame_all->setToolTip(tr("Frame all (F)"));
+  avatar_view_actions_ = add_avatar_view_actions(view_menu_, avatar_view_);
   view_menu_->addSeparator();
   for (QDockWidget* dock : findChildren<QDockWidget*>())
     view_menu_->addAction(dock->toggleViewAction());
@@ -325,6 +327,7 @@ void MainWindow::updateTitle() {
 
 void MainWindow::setPieceStates(const std::vector<PieceState>& states) {
   pattern_view_->setPieceStates(states);
+  avatar_view_->setPieceStates(states);
 }
 
 void MainWindow::setGarmentPositions(std::shared_ptr<const Eigen::MatrixX3d> positions) {
@@ -370,7 +373,7 @@ void MainWindow::clearArrangement() {
     avatar_view_->setGarment(garment_);
     avatar_view_->setGarmentPositions(
         std::make_shared<const Eigen::MatrixX3d>(flat_placement(*garment_)));
-    pattern_view_->setPieceStates({});
+    setPieceStates({});
   }
   order_list_->clear();
   status_bar_->setStatus({});

@@ -22,6 +22,7 @@
 #include "engine/quality/verdict.h"
 #include "engine/recovery/cannot_fit.h"
 #include "ui/arrangement_status_bar.h"
+#include "ui/avatar_view_actions.h"
 #include "ui/body_location_marker.h"
 #include "ui/classifier_table_model.h"
 #include "ui/piece_state.h"
@@ -107,6 +108,7 @@ class MainWindow : public QMainWindow {
   ArrangementStatusBar* arrangementStatusBar() const { return status_bar_; }
   QualityPanel* qualityPanel() const { return quality_panel_; }
   const SessionActions& sessionActions() const { return session_actions_; }
+  const AvatarViewActions& avatarViewActions() const { return avatar_view_actions_; }
   QMenu* recentFilesMenu() const { return recent_menu_; }
 
  signals:
@@ -153,6 +155,7 @@ class MainWindow : public QMainWindow {
   QMenu* arrange_menu_ = nullptr;
   QToolBar* toolbar_ = nullptr;
   SessionActions session_actions_;
+  AvatarViewActions avatar_view_actions_;
   ErrorPresenter error_presenter_;
 
   std::shared_ptr<const Garment> garment_;

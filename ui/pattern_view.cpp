@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 
+#include "ui/colour_legend.h"
 #include "ui/pattern_layout.h"
 
 namespace garment::ui {
@@ -51,6 +52,13 @@ PatternView::PatternView(QWidget* parent) : QGraphicsView(parent) {
   // Files dropped here go to the main window.
   setAcceptDrops(false);
   viewport()->setAcceptDrops(false);
+  // The fill colours of the arrangement states, always in view.
+  legend_ = new ColourLegend(this);
+  QList<LegendEntry> entries;
+  for (PieceState state :
+       {PieceState::Waiting, PieceState::InBatch, PieceState::Arranged, PieceState::Seed})
+    entries.append({piece_state_colour(state), piece_state_name(state)});
+  legend_->setEntries(entries);
 }
 
 void PatternView::setGarment(std::shared_ptr<const Garment> garment) {

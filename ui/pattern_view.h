@@ -3,7 +3,7 @@
 // with the colour of its arrangement state and labelled with its name. The sewing relationships of
 // the selected pieces are drawn on top: both edges of each stitch highlighted in one colour and a
 // few sewing pairs joined by dashed lines. Wheel zooms at the cursor, dragging pans, a click
-// selects (Ctrl or Shift adds to the selection).
+// selects (Ctrl or Shift adds to the selection). A legend in the corner explains the fill colours.
 
 #include <QGraphicsView>
 #include <QList>
@@ -17,6 +17,8 @@ class QGraphicsPolygonItem;
 class QGraphicsSimpleTextItem;
 
 namespace garment::ui {
+
+class ColourLegend;
 
 class PatternView : public QGraphicsView {
   Q_OBJECT
@@ -38,6 +40,7 @@ class PatternView : public QGraphicsView {
   QPoint pieceLabelPosition(int piece) const;
   // Stitches drawn for the current selection.
   int sewingHighlightCount() const { return sewing_highlight_count_; }
+  ColourLegend* legend() const { return legend_; }
 
  public slots:
   void frameAll();
@@ -67,6 +70,7 @@ class PatternView : public QGraphicsView {
   QList<int> selected_;
   std::vector<QGraphicsItem*> sewing_items_;
   int sewing_highlight_count_ = 0;
+  ColourLegend* legend_ = nullptr;
   QPoint press_position_;
   bool framed_by_user_ = false;  // zoomed or panned: resizing keeps the user's view
 };

@@ -1,12 +1,15 @@
 // garment-studio: the desktop editor. Wiring only; the window lives in ui/.
 //
 //   garment-studio [PATTERN.json] [--body BODY.obj] [--run | --steps N] [--select PIECE[,PIECE…]]
-//                  [--location NAME] [--seed] [--arrange-next PIECE]
+//                  [--location NAME] [--seed] [--arrange-next PIECE] [--actions NAME[,NAME…]]
 //                  [--screenshot OUT.png [--after-ms N] [--when-idle]] [--size WIDTHxHEIGHT]
 // Without a pattern the bundled demo opens, without a body the bundled default body. --run starts
 // the arrangement at once; --steps runs that many phases; --seed seeds the arrangement with the
 // selected pieces at the chosen location and runs; --arrange-next, once the arrangement is done,
-// arranges that piece next and re-runs. --screenshot saves the window after N ms (default 1500;
+// arranges that piece next and re-runs. --actions triggers the window's actions of these object
+// names once the window shows (view_overlay_strain, view_body_see_through, …:
+// ui/avatar_view_actions.h).
+// --screenshot saves the window after N ms (default 1500;
 // with --when-idle, N ms after the arrangement has come to rest) and exits (0 saved, 1 not saved
 // or timed out, 2 bad arguments, 3 a file failed to open), with fresh settings.
 
@@ -55,9 +58,11 @@ int main(int argc, char** argv) {
   const QCommandLineOption idle_option("when-idle",
                                        "Count the delay from when the arrangement comes to rest.");
   const QCommandLineOption size_option("size", "Window size, e.g. 1440x900.", "size");
+  const QCommandLineOption actions_option(
+      "actions", "Trigger the window's actions of these object names (a,b).", "names");
   parser.addOptions({body_option, run_option, steps_option, select_option, location_option,
                      seed_option, next_option, screenshot_option, after_option, idle_option,
-                     size_option});
+                     size_option, actions_option});
   parser.process(application);
 
   bool delay_ok = false, steps_ok = true;
@@ -110,6 +115,14 @@ int main(int argc, char** argv) {
   }
   window.show();
   if (scripted && !opened) return 3;
+  for (const QString& name : parser.value(actions_option).split(',', Qt::SkipEmptyParts)) {
+    auto* action = window.findChild<QAction*>(name);
+    if (!action) {
+      std::fprintf(stderr, "garment-studio: no action named %s\n", qPrintable(name));
+      return 2;
+    }
+    action->trigger();
+  }
 
   // What the command line asks for once the session is ready, and when the screenshot is due.
   const bool seed = parser.isSet(seed_option);

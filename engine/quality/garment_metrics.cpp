@@ -45,7 +45,22 @@ bool normal_dot(const Eigen::MatrixX3d& normals, int t0, int t1, double& dot) {
   return true;
 }
 
+// #E by 2: the rows `chosen` of `edges`.
+Eigen::MatrixX2i edge_rows(const Eigen::MatrixX2i& edges, const std::vector<Eigen::Index>& chosen) {
+  Eigen::MatrixX2i rows(static_cast<Eigen::Index>(chosen.size()), 2);
+  for (std::size_t k = 0; k < chosen.size(); ++k)
+    rows.row(static_cast<Eigen::Index>(k)) = edges.row(chosen[k]);
+  return rows;
+}
+
 }  // namespace
+
+Eigen::VectorXd pair_gaps(const Eigen::MatrixX2i& pairs, const Eigen::MatrixX3d& positions) {
+  Eigen::VectorXd gaps(pairs.rows());
+  for (Eigen::Index k = 0; k < pairs.rows(); ++k)
+    gaps(k) = (positions.row(pairs(k, 0)) - positions.row(pairs(k, 1))).norm();
+  return gaps;
+}
 
 Eigen::VectorXi weld_seams_and_darts(const Garment& garment) {
   const Eigen::VectorXi sewn = welded_vertices(garment);
@@ -100,7 +115,8 @@ GarmentChecker::GarmentChecker(const Garment& garment, const BodyReference* body
   }
 }
 
-GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const {
+GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions,
+                                       GarmentDiagnostics* diagnostics) const {
   if (positions.rows() != garment_.vertex_count())
     throw std::invalid_argument("GarmentChecker::measure: positions must have one row per vertex");
   if (!positions.allFinite())
@@ -114,6 +130,12 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
   metrics.piece_max_strain.assign(piece_count, 0.0);
   const Eigen::Index edge_count = edges_.edges.rows();
   const auto edge_piece = [&](Eigen::Index e) { return garment_.vertex_piece(edges_.edges(e, 0)); };
+  // The flagged edges of one kind, kept only when the caller asked for diagnostics.
+  std::vector<Eigen::Index> fold_edges, body_crossing_edges, self_crossing_edges;
+  if (diagnostics) {
+    *diagnostics = GarmentDiagnostics{};
+    diagnostics->vertex_strain = Eigen::VectorXd::Zero(garment_.vertex_count());
+  }
 
   const Eigen::MatrixX3d normals = triangle_normals(positions, garment_.triangles);
   double dot = 0.0;
@@ -124,6 +146,7 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
     if (dot < kFoldNormalDot) {
       ++metrics.folds;
       ++metrics.piece_folds[garment_.triangle_piece(t0)];
+      if (diagnostics) fold_edges.push_back(e);
     }
   }
   for (const Eigen::Vector2i& pair : seam_neighbours_)
@@ -141,6 +164,11 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
     piece_max = std::max(piece_max, strains[e]);
     if (strains[e] > metrics.max_strain) most_stretched = e;
     metrics.max_strain = std::max(metrics.max_strain, strains[e]);
+    if (diagnostics)
+      for (int k = 0; k < 2; ++k) {
+        double& vertex_max = diagnostics->vertex_strain(edges_.edges(e, k));
+        vertex_max = std::max(vertex_max, strains[e]);
+      }
   }
   if (!strains.empty()) {
     const auto rank =
@@ -149,17 +177,22 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
     metrics.p99_strain = strains[rank];
   }
 
-  const auto widest_gap = [&](const StitchPairs& stitch, const Eigen::MatrixX2i& pairs) {
-    double gap = 0.0;
-    for (int k = stitch.first_pair; k < stitch.first_pair + stitch.pair_count; ++k)
-      gap = std::max(gap, (positions.row(pairs(k, 0)) - positions.row(pairs(k, 1))).norm());
+  const Eigen::VectorXd sewing_gaps = pair_gaps(garment_.sewing_pairs, positions);
+  const Eigen::VectorXd dart_gaps = pair_gaps(garment_.dart_pairs, positions);
+  const auto widest_gap = [&](const StitchPairs& stitch, const Eigen::VectorXd& gaps) {
+    const double gap =
+        stitch.pair_count > 0 ? gaps.segment(stitch.first_pair, stitch.pair_count).maxCoeff() : 0.0;
     metrics.max_seam_gap_m = std::max(metrics.max_seam_gap_m, gap);
     return gap;
   };
   for (const StitchPairs& stitch : garment_.stitches)
-    metrics.stitch_max_gap_m.push_back(widest_gap(stitch, garment_.sewing_pairs));
+    metrics.stitch_max_gap_m.push_back(widest_gap(stitch, sewing_gaps));
   for (const StitchPairs& dart : garment_.darts)
-    metrics.dart_max_gap_m.push_back(widest_gap(dart, garment_.dart_pairs));
+    metrics.dart_max_gap_m.push_back(widest_gap(dart, dart_gaps));
+  if (diagnostics) {
+    diagnostics->sewing_pair_gap_m = sewing_gaps;
+    diagnostics->dart_pair_gap_m = dart_gaps;
+  }
 
   if (body_) {
     const Clock::time_point body_start = Clock::now();
@@ -174,17 +207,20 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
       if (touching[e]) {
         ++metrics.body_crossing_edges;
         ++metrics.piece_crossing_edges[edge_piece(e)];
+        if (diagnostics) body_crossing_edges.push_back(e);
       } else {
         join(parent, edges_.edges(e, 0), edges_.edges(e, 1));
       }
     }
     std::vector<signed char> root_inside(parent.size(), -1);
+    if (diagnostics) diagnostics->vertex_inside_body.assign(parent.size(), 0);
     for (int v = 0; v < garment_.vertex_count(); ++v) {
       const int root = find_root(parent, v);
       if (root_inside[root] < 0)
         root_inside[root] = body_->surface.strictly_inside(positions.row(root).transpose());
       if (!root_inside[root]) continue;
       ++metrics.body_inside_vertices;
+      if (diagnostics) diagnostics->vertex_inside_body[v] = 1;
       ++metrics.piece_inside_vertices[garment_.vertex_piece(v)];
       metrics.max_inside_depth_m =
           std::max(metrics.max_inside_depth_m,
@@ -216,6 +252,7 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
   for (std::size_t i = 0; i < contacts.size();) {
     const int edge = contacts[i].x();
     ++metrics.self_crossing_edges;
+    if (diagnostics) self_crossing_edges.push_back(edge);
     std::vector<int> pieces;
     for (; i < contacts.size() && contacts[i].x() == edge; ++i)
       pieces.push_back(garment_.triangle_piece(contacts[i].y()));
@@ -228,6 +265,11 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions) const 
   for (const auto& [pieces, count] : pair_counts)
     metrics.self_crossing_pairs.push_back({pieces.first, pieces.second, count});
   metrics.seconds_self_crossing = seconds_since(self_start);
+  if (diagnostics) {
+    diagnostics->fold_edges = edge_rows(edges_.edges, fold_edges);
+    diagnostics->body_crossing_edges = edge_rows(edges_.edges, body_crossing_edges);
+    diagnostics->self_crossing_edges = edge_rows(edges_.edges, self_crossing_edges);
+  }
   metrics.seconds_total = seconds_since(start);
   return metrics;
 }

@@ -105,6 +105,24 @@ struct GarmentMetrics {
   double seconds_total = 0.0;
 };
 
+// Where the metrics' counts and maxima come from, per element of one garment state: what the
+// studio draws over the garment. Filled by GarmentChecker::measure alongside the metrics, with the
+// same definitions (the list at the top of this file), so that a count in the metrics is the
+// number of elements flagged here.
+struct GarmentDiagnostics {
+  // #V: the largest strain of the edges at each vertex (0 at a vertex whose edges are all at or
+  // below their rest length).
+  Eigen::VectorXd vertex_strain;
+  // #V: 1 for a vertex strictly inside the body; empty when measured without a body.
+  std::vector<char> vertex_inside_body;
+  Eigen::MatrixX2i body_crossing_edges;  // #Eb by 2 vertex ids: edges touching the body surface
+  Eigen::MatrixX2i self_crossing_edges;  // #Es by 2 vertex ids: edges touching other cloth
+  // #F by 2 vertex ids: for each fold, the edge shared by the two triangles folded onto each other.
+  Eigen::MatrixX2i fold_edges;
+  Eigen::VectorXd sewing_pair_gap_m;  // per Garment::sewing_pairs row: distance of its two vertices
+  Eigen::VectorXd dart_pair_gap_m;    // per Garment::dart_pairs row
+};
+
 class GarmentChecker {
  public:
   // `garment` and `body` (may be null: no body metrics, no placement check) must outlive the
@@ -112,8 +130,10 @@ class GarmentChecker {
   GarmentChecker(const Garment& garment, const BodyReference* body,
                  std::vector<ExpectedRegion> regions);
 
-  // positions: #V×3 garment state.
-  GarmentMetrics measure(const Eigen::MatrixX3d& positions) const;
+  // positions: #V×3 garment state. diagnostics, when given, receives the per-element flags and
+  // values the metrics are aggregated from.
+  GarmentMetrics measure(const Eigen::MatrixX3d& positions,
+                         GarmentDiagnostics* diagnostics = nullptr) const;
 
   // #V welded vertex ids (sewing and dart pairs joined transitively).
   const Eigen::VectorXi& welded() const { return welded_; }
@@ -132,6 +152,10 @@ class GarmentChecker {
 // #V class of each vertex with its seam and dart partners welded (welded_vertices plus the dart
 // pairs: a closed dart is a seam too); triangles sharing a class count as adjacent.
 Eigen::VectorXi weld_seams_and_darts(const Garment& garment);
+
+// #P: the distance between the two vertices of each row of `pairs` (#P by 2 ids into
+// `positions`, #V by 3): the gap of each sewing or dart pair.
+Eigen::VectorXd pair_gaps(const Eigen::MatrixX2i& pairs, const Eigen::MatrixX3d& positions);
 
 // One-off measurement (builds a checker).
 GarmentMetrics measure_garment(const Garment& garment, const Eigen::MatrixX3d& positions,

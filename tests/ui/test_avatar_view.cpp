@@ -201,7 +201,9 @@ class AvatarViewTest : public QObject {
     view_->setBody(test::sphere_body(Eigen::Vector3d(0, 1, 0), 0.3));
     view_->setOrbit(0, 0);
     std::vector<ui::BodyLocationMarker> markers = {
-        {"neck", Eigen::Vector3d(0, 1.25, 0), Eigen::Vector3d::UnitY()},
+        // Inside the sphere, 0.23 m behind its surface along the view ray: drawn as if on the
+        // surface of a limb about that thick.
+        {"neck", Eigen::Vector3d(0, 1.25, 0), Eigen::Vector3d::UnitY(), 0.22},
         {"chest_front", Eigen::Vector3d(0.1, 1.0, 0.3), Eigen::Vector3d::UnitZ()},
     };
     view_->setBodyLocations(markers);
