@@ -424,9 +424,11 @@ void Session::reorder(const std::vector<int>& order) {
   }
   const std::optional<SeedPlan> seed = options_.seed;
   restore(keep);
-  // Continues from there with this order (the checkpoint keeps the order it was taken with).
+  // Continues from there with this order alone: what was left of the checkpoint's own order
+  // (which the checkpoint keeps) would otherwise go first.
   options_.seed = seed;
   options_.order = order;
+  state_.explicit_order.clear();
   for (int piece : order)
     if (!state_.arranged[piece]) state_.explicit_order.push_back(piece);
 }
