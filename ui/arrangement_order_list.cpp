@@ -8,6 +8,7 @@ namespace garment::ui {
 namespace {
 constexpr int kPieceRole = Qt::UserRole;
 constexpr int kNameRole = Qt::UserRole + 1;
+constexpr int kBatchRole = Qt::UserRole + 2;
 }  // namespace
 
 ArrangementOrderList::ArrangementOrderList(QWidget* parent) : QListWidget(parent) {
@@ -27,6 +28,7 @@ void ArrangementOrderList::setOrder(const std::vector<int>& pieces, const QStrin
     item->setData(kPieceRole, piece);
     item->setData(kNameRole,
                   piece >= 0 && piece < names.size() ? names[piece] : tr("piece %1").arg(piece));
+    item->setData(kBatchRole, -1);
     item->setFlags(Qt::ItemIsEnabled | Qt::ItemIsSelectable | Qt::ItemIsDragEnabled);
   }
   renumber();
@@ -39,9 +41,43 @@ QList<int> ArrangementOrderList::order() const {
   return pieces;
 }
 
-void ArrangementOrderList::renumber() {
+void ArrangementOrderList::setBatches(const std::vector<int>& batches) {
   for (int row = 0; row < count(); ++row)
-    item(row)->setText(QString("%1.  %2").arg(row + 1).arg(item(row)->data(kNameRole).toString()));
+    item(row)->setData(kBatchRole, row < static_cast<int>(batches.size()) ? batches[row] : -1);
+  renumber();
+}
+
+int ArrangementOrderList::batchOfRow(int row) const {
+  return row >= 0 && row < count() ? item(row)->data(kBatchRole).toInt() : -1;
+}
+
+void ArrangementOrderList::selectPieces(const QList<int>& pieces) {
+  const QSignalBlocker blocker(this);
+  const QList<int> rows = order();
+  const int row = pieces.isEmpty() ? -1 : static_cast<int>(rows.indexOf(pieces.front()));
+  setCurrentRow(row);
+  if (row < 0) clearSelection();
+}
+
+QList<int> ArrangementOrderList::selectedPieces() const {
+  QList<int> pieces;
+  for (const QListWidgetItem* selected : selectedItems())
+    pieces << selected->data(kPieceRole).toInt();
+  return pieces;
+}
+
+void ArrangementOrderList::renumber() {
+  const QColor shade = palette().color(QPalette::AlternateBase);
+  for (int row = 0; row < count(); ++row) {
+    QListWidgetItem* row_item = item(row);
+    const int batch = row_item->data(kBatchRole).toInt();
+    QString text = QString("%1.  %2").arg(row + 1).arg(row_item->data(kNameRole).toString());
+    if (batch == 0) text += tr("    seed");
+    if (batch > 0) text += tr("    batch %1").arg(batch);
+    row_item->setText(text);
+    // Every other batch shaded: where the shading changes, a batch ends.
+    row_item->setBackground(batch >= 0 && batch % 2 == 1 ? QBrush(shade) : QBrush());
+  }
 }
 
 void ArrangementOrderList::movePiece(int from, int to) {

@@ -164,6 +164,7 @@ void MainWindow::createActions() {
   file_menu->addSeparator();
   QAction* quit = file_menu->addAction(tr("&Quit"), this, &QWidget::close);
   quit->setShortcut(QKeySequence::Quit);
+  edit_menu_ = menuBar()->addMenu(tr("&Edit"));
 
   view_menu_ = menuBar()->addMenu(tr("&View"));
   QAction* frame_all = view_menu_->addAction(tr("&Frame all"), this, [this] {

@@ -76,6 +76,7 @@ class MainWindow : public QMainWindow {
   // Restores the saved dock layout again, once panels added after construction exist.
   void restoreDockLayout();
   QMenu* arrangementMenu() const { return arrange_menu_; }
+  QMenu* editMenu() const { return edit_menu_; }  // empty until the session integration fills it
   QToolBar* mainToolBar() const { return toolbar_; }
 
   std::shared_ptr<const Garment> garment() const { return garment_; }
@@ -153,6 +154,7 @@ class MainWindow : public QMainWindow {
   QMenu* recent_menu_ = nullptr;
   QMenu* view_menu_ = nullptr;
   QMenu* arrange_menu_ = nullptr;
+  QMenu* edit_menu_ = nullptr;
   QToolBar* toolbar_ = nullptr;
   SessionActions session_actions_;
   AvatarViewActions avatar_view_actions_;

@@ -183,6 +183,13 @@ void SessionThread::useAttempt(int index) {
   post(std::move(command), true);
 }
 
+void SessionThread::returnTo(int index, std::vector<int> order) {
+  Command command(Command::Return);
+  command.index = index;
+  command.order = std::move(order);
+  post(std::move(command), true);
+}
+
 void SessionThread::exportTo(ExportKind kind, const QString& path) {
   Command command(Command::Export);
   command.export_kind = kind;
@@ -272,7 +279,19 @@ QString SessionThread::checkpointLabel(Phase ran) const {
     label += QString(", batch %1").arg(now.batch + 1);
   if (ran != Phase::Select && ran != Phase::Check)
     label += QString(" (%1 iterations)").arg(last_iterations_);
+  // A branch: it continues an earlier checkpoint, not the one listed just above it.
+  const int parent = session_->checkpoint_parent(static_cast<std::size_t>(index));
+  if (parent != index - 1) label += tr("  ← from %1").arg(parent);
   return label;
+}
+
+void SessionThread::labelNewStarts() {
+  while (history_.size() < static_cast<qsizetype>(session_->checkpoint_count())) {
+    const std::optional<SeedPlan>& seed = session_->options().seed;
+    history_ << tr("%1. start (%2 seed)")
+                    .arg(history_.size())
+                    .arg(seed && seed->manual ? tr("manual") : tr("classifier's"));
+  }
 }
 
 void SessionThread::execute(const Command& command) {
@@ -316,12 +335,16 @@ void SessionThread::execute(const Command& command) {
         running_ = false;
         steps_requested_ = 0;
         break;
-      case Command::Reset:
+      case Command::Reset: {
         running_ = false;
         steps_requested_ = 0;
         forgetAttempts();
-        session_->restore(0);
+        // The start of this branch (its seed), continued in the order asked for.
+        const std::vector<int> order = session_->options().order;
+        session_->restore(session_->checkpoint_before_batch(-1));
+        session_->reorder(order);
         break;
+      }
       case Command::Reseed:
         forgetAttempts();
         session_->reseed(command.seed);
@@ -339,6 +362,15 @@ void SessionThread::execute(const Command& command) {
           return;
         forgetAttempts();
         session_->restore(static_cast<std::size_t>(command.index));
+        running_ = false;
+        steps_requested_ = 0;
+        break;
+      case Command::Return:
+        if (command.index < 0 || command.index >= static_cast<int>(session_->checkpoint_count()))
+          return;
+        forgetAttempts();
+        session_->restore(static_cast<std::size_t>(command.index));
+        if (session_->options().order != command.order) session_->reorder(command.order);
         running_ = false;
         steps_requested_ = 0;
         break;
@@ -363,9 +395,7 @@ void SessionThread::execute(const Command& command) {
     sendToGui([this, title, message] { Q_EMIT failed(title, message); });
     if (!session_) return;
   }
-  // Restores (also inside reset, reseed and reorder) drop the later checkpoints.
-  while (history_.size() > static_cast<qsizetype>(session_->checkpoint_count()))
-    history_.removeLast();
+  labelNewStarts();
   last_cancelled_ = false;
   publishUpdate();
   publishState();
@@ -507,9 +537,12 @@ void SessionThread::publishState() {
   state.cancelled = last_cancelled_;
   state.order = session_->report().order;
   state.requested_order = session_->options().order;
+  for (const BatchRecord& batch : session_->report().batches)
+    state.batches.push_back(batch.pieces);
   state.automatic_seed = session_->automatic_seed();
   state.seed = session_->options().seed ? *session_->options().seed : state.automatic_seed;
   state.history = history_;
+  state.current_checkpoint = static_cast<int>(session_->current_checkpoint());
   state.scene = scene_;
   // Judged once per ending: a command that changes a done session's garment (reset, reseed,
   // reorder, an earlier checkpoint) leaves the session not done, and every command is followed by

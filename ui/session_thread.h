@@ -16,7 +16,9 @@
 // Run steps until done or paused; Pause stops after the phase in progress; Step runs exactly one
 // phase; Stop cancels the phase in progress (the engine undoes it, so the session stays at that
 // phase's start); Reset, reseed, reorder and restore cancel the phase in progress too, then change
-// the session. Every call returns at once and is safe only from the thread that owns the object.
+// the session. Reset goes back to the start of the current branch keeping the seed and the order
+// asked for; nothing drops a checkpoint. Every call returns at once and is safe only from the
+// thread that owns the object.
 
 #include <QMetaType>
 #include <QString>
@@ -70,7 +72,8 @@ struct SessionState {
   std::vector<int> requested_order;    // the session's explicit order (reorder)
   SeedPlan seed;                       // the seed in use: manual, else the classifier's
   SeedPlan automatic_seed;             // the classifier's
-  QStringList history;                 // one label per checkpoint, oldest first
+  QStringList history;                 // one label per checkpoint, oldest first; none dropped
+  int current_checkpoint = 0;          // the history row the session stands at
   std::shared_ptr<const Scene> scene;  // immutable; for the classifier's verdict and exports
   // The garment's quality once the session is done (nullopt before): judged on the worker, so
   // that the window never shows an ended arrangement without saying whether it passes.
@@ -83,6 +86,8 @@ struct SessionState {
   std::vector<AttemptRecord> attempts;
   int attempt_shown = -1;
   bool fixing = false;
+  // The pieces of each batch started so far (the one in progress last), after any growth.
+  std::vector<std::vector<int>> batches;
 };
 
 class SessionThread : public QThread {
@@ -106,7 +111,8 @@ class SessionThread : public QThread {
   void reseed(std::optional<SeedPlan> seed, bool run_after);
   // Arranges in this order from the first batch that changes it, then runs if asked.
   void reorder(std::vector<int> order, bool run_after);
-  // Goes back to checkpoint `index` (of SessionState::history) and holds there.
+  // Goes to checkpoint `index` (of SessionState::history), with the seed and order it was made
+  // with, and holds there; the later checkpoints stay.
   void restoreCheckpoint(int index);
   // Recovers a done garment that fails its verdict (recovery/recovery.h: diagnosed attempts on
   // every core but one, within the recovery's work budget), each attempt listed as it ends; the
@@ -115,6 +121,8 @@ class SessionThread : public QThread {
   // Shows attempt `index` of the last fix (SessionState::attempts) instead; later commands act on
   // it (a remesh's garment has its own mesh).
   void useAttempt(int index);
+  // Goes to checkpoint `index` and continues from it in `order` (undo and redo), holding there.
+  void returnTo(int index, std::vector<int> order);
   // Writes the current (last completed phase's) garment; reports through exportFinished.
   void exportTo(ExportKind kind, const QString& path);
 
@@ -146,6 +154,7 @@ class SessionThread : public QThread {
       Reseed,
       Reorder,
       Restore,
+      Return,
       Export,
       Fix,
       UseAttempt
@@ -181,6 +190,8 @@ class SessionThread : public QThread {
   void forgetAttempts();        // the session changed: the last fix's attempts no longer apply
   const GarmentChecker& checker();
   QString checkpointLabel(Phase ran) const;
+  // Labels the checkpoints a command added without running a phase (a reseed's new start).
+  void labelNewStarts();
   // The clock the status bar shows: the seconds the phases that led to the current checkpoint took,
   // plus those of the phase in progress. It starts at the first Run or Step, not when the session
   // opens, and excludes pauses (it only runs while a phase does); a cancelled phase's time goes

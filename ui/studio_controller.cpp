@@ -54,7 +54,7 @@ StudioController::StudioController(MainWindow* window, SessionOptions options)
   });
   connect(actions.step, &QAction::triggered, thread_.get(), &SessionThread::stepSession);
   connect(actions.stop, &QAction::triggered, thread_.get(), &SessionThread::stopSession);
-  connect(actions.reset, &QAction::triggered, thread_.get(), &SessionThread::resetSession);
+  connect(actions.reset, &QAction::triggered, this, &StudioController::resetArrangement);
   connect(actions.export_obj, &QAction::triggered, this,
           [this] { askExport(SessionThread::ExportKind::Obj); });
   connect(actions.export_glb, &QAction::triggered, this,
@@ -65,18 +65,25 @@ StudioController::StudioController(MainWindow* window, SessionOptions options)
   arrange_next_ = new QAction(tr("Arrange selected &next"), this);
   arrange_next_->setShortcut(QKeySequence(tr("Ctrl+N")));
   arrange_next_->setToolTip(
-      tr("Arrange the selected piece right after the arranged ones (or right after the seed) and "
-         "re-run from there"));
+      tr("Arrange the pieces selected in any view (pattern, 3D or order list) right after the "
+         "arranged ones (or right after the seed) and re-run from there"));
   connect(arrange_next_, &QAction::triggered, this, &StudioController::arrangeSelectedNext);
   window_->arrangementMenu()->addSeparator();
   window_->arrangementMenu()->addAction(arrange_next_);
   window_->mainToolBar()->insertAction(nullptr, arrange_next_);
 
+  undo_action_ = window_->editMenu()->addAction(tr("&Undo"), this, &StudioController::undoEdit);
+  undo_action_->setShortcut(QKeySequence(tr("Ctrl+Z")));
+  redo_action_ = window_->editMenu()->addAction(tr("&Redo"), this, &StudioController::redoEdit);
+  redo_action_->setShortcut(QKeySequence(tr("Ctrl+Shift+Z")));
+
   seed_panel_ = new ManualSeedPanel(window_);
   window_->addPanel(tr("Manual seed"), "seed_dock", seed_panel_);
   connect(seed_panel_, &ManualSeedPanel::seedRequested, this, &StudioController::seedFromChoice);
-  connect(seed_panel_, &ManualSeedPanel::automaticSeedRequested, this,
-          [this] { thread_->reseed(std::nullopt, true); });
+  connect(seed_panel_, &ManualSeedPanel::automaticSeedRequested, this, [this] {
+    recordEdit(tr("classifier's seed"));
+    thread_->reseed(std::nullopt, true);
+  });
   connect(window_, &MainWindow::pieceSelectionChanged, this, &StudioController::updateSeedChoice);
   connect(window_, &MainWindow::bodyLocationSelected, this, &StudioController::updateSeedChoice);
 
@@ -100,10 +107,28 @@ StudioController::StudioController(MainWindow* window, SessionOptions options)
 
   connect(window_->orderList(), &ArrangementOrderList::orderChanged, this,
           &StudioController::orderDragged);
-  connect(window_->qualityPanel(), &QualityPanel::fixRequested, thread_.get(),
-          &SessionThread::fixAutomatically);
-  connect(window_->qualityPanel(), &QualityPanel::attemptChosen, thread_.get(),
-          &SessionThread::useAttempt);
+  // A fix, or an attempt chosen, replaces the session the undo entries' checkpoints belong to (the
+  // first pass stays in the attempt list).
+  connect(window_->qualityPanel(), &QualityPanel::fixRequested, this, [this] {
+    undo_.clear();
+    updateUndoActions();
+    thread_->fixAutomatically();
+  });
+  connect(window_->qualityPanel(), &QualityPanel::attemptChosen, this, [this](int index) {
+    undo_.clear();
+    updateUndoActions();
+    thread_->useAttempt(index);
+  });
+  // One selection across the views: a row chosen in the order list selects its piece in the
+  // pattern and 3D views (and so for Arrange selected next and the manual seed), and back.
+  connect(window_->orderList(), &QListWidget::itemSelectionChanged, this, [this] {
+    const QList<int> pieces = window_->orderList()->selectedPieces();
+    if (pieces.isEmpty()) return;
+    window_->selectPieces(pieces);
+    updateSeedChoice();
+  });
+  connect(window_, &MainWindow::pieceSelectionChanged, window_->orderList(),
+          &ArrangementOrderList::selectPieces);
   connect(window_, &MainWindow::garmentOpened, this, &StudioController::openSession);
   connect(window_, &MainWindow::bodyOpened, this, &StudioController::openSession);
 
@@ -133,6 +158,7 @@ void StudioController::openSession() {
   last_update_ = {};
   opening_ = true;
   shown_scene_.reset();
+  undo_.clear();  // the edits were of the session replaced
   thread_->openScene(window_->garment(), window_->body(), options_);
   if (run_when_opened_) {
     thread_->runSession();
@@ -202,7 +228,7 @@ void StudioController::applyState(const SessionState& state) {
     const QSignalBlocker blocker(history_list_);
     history_list_->clear();
     history_list_->addItems(state.history);
-    history_list_->setCurrentRow(static_cast<int>(state.history.size()) - 1);
+    history_list_->setCurrentRow(state.current_checkpoint);
   }
   ArrangementStatus status = window_->arrangementStatusBar()->status();
   status.running = state.running;
@@ -245,6 +271,68 @@ void StudioController::updateActions() {
   arrange_next_->setEnabled(ready);
   seed_panel_->automaticButton()->setEnabled(ready);
   updateSeedChoice();
+  updateUndoActions();
+}
+
+void StudioController::updateUndoActions() {
+  const bool ready = state_.has_session && !opening_;
+  undo_action_->setEnabled(ready && undo_.canUndo());
+  redo_action_->setEnabled(ready && undo_.canRedo());
+  undo_action_->setText(undo_.canUndo()
+                            ? tr("&Undo %1").arg(QString::fromStdString(undo_.undoLabel()))
+                            : tr("&Undo"));
+  redo_action_->setText(undo_.canRedo()
+                            ? tr("&Redo %1").arg(QString::fromStdString(undo_.redoLabel()))
+                            : tr("&Redo"));
+}
+
+void StudioController::recordEdit(const QString& label) {
+  undo_.record(label.toStdString(), place());
+  updateUndoActions();
+}
+
+void StudioController::undoEdit() {
+  const std::string label = undo_.undoLabel();
+  const std::optional<StudioPlace> target = undo_.undo(place());
+  if (!target || !state_.has_session) return;
+  thread_->returnTo(target->checkpoint, target->order);
+  window_->statusBar()->showMessage(tr("undid %1: back to history row %2")
+                                        .arg(QString::fromStdString(label))
+                                        .arg(target->checkpoint),
+                                    8000);
+  updateUndoActions();
+}
+
+void StudioController::redoEdit() {
+  const std::string label = undo_.redoLabel();
+  const std::optional<StudioPlace> target = undo_.redo(place());
+  if (!target || !state_.has_session) return;
+  thread_->returnTo(target->checkpoint, target->order);
+  window_->statusBar()->showMessage(
+      tr("redid %1: history row %2").arg(QString::fromStdString(label)).arg(target->checkpoint),
+      8000);
+  updateUndoActions();
+}
+
+void StudioController::resetArrangement() {
+  if (!state_.has_session || opening_) return;
+  recordEdit(tr("reset"));
+  thread_->resetSession();
+  // Reset keeps the seed and the order asked for (and every checkpoint): said, not silent.
+  QString kept = tr("reset: back to the start with the %1 seed")
+                     .arg(state_.seed.manual ? tr("manual") : tr("classifier's"));
+  if (!state_.requested_order.empty())
+    kept += tr(", keeping your order of %n piece(s)", nullptr,
+               static_cast<int>(state_.requested_order.size()));
+  window_->statusBar()->showMessage(
+      kept + tr("; Undo (Ctrl+Z) returns to history row %1").arg(state_.current_checkpoint), 10000);
+}
+
+QString StudioController::pieceName(int piece) const {
+  const Garment* garment = window_->garment().get();
+  return garment && piece >= 0 && piece < static_cast<int>(garment->pieces.size())
+             ? QString::fromStdString(garment->pieces[piece].name)
+             : QString::number(piece);
 }
 
 void StudioController::showOrder(const std::vector<int>& arranged) {
@@ -260,43 +348,125 @@ void StudioController::showOrder(const std::vector<int>& arranged) {
     if (!contains(order, piece)) order.push_back(piece);
   for (std::size_t piece = 0; piece < piece_count; ++piece)
     if (!contains(order, static_cast<int>(piece))) order.push_back(static_cast<int>(piece));
+  showList(order);
+}
+
+void StudioController::showList(const std::vector<int>& order) {
   shown_order_ = order;
   window_->setArrangementOrder(order);
+  // Which batch each row's piece went in (the batch in progress included); waiting ones none.
+  const std::vector<int> seed = state_.seed.pieces();
+  std::vector<int> batches;
+  for (int piece : order) {
+    int batch = contains(seed, piece) && contains(state_.order, piece) ? 0 : -1;
+    for (std::size_t k = 0; k < state_.batches.size() && batch < 0; ++k)
+      if (contains(state_.batches[k], piece)) batch = static_cast<int>(k) + 1;
+    batches.push_back(batch);
+  }
+  window_->orderList()->setBatches(batches);
+  window_->orderList()->selectPieces(window_->selectedPieces());
 }
 
 void StudioController::orderDragged(const QList<int>& dragged) {
   const std::vector<int> order(dragged.begin(), dragged.end());
+  int moved = -1;  // the dragged piece: the first that differs, unless it went later
+  for (std::size_t i = 0; i < order.size() && i < shown_order_.size() && moved < 0; ++i)
+    if (order[i] != shown_order_[i])
+      moved = i + 1 < shown_order_.size() && order[i] == shown_order_[i + 1] ? shown_order_[i]
+                                                                             : order[i];
+  requestOrder(order, tr("move %1").arg(pieceName(moved)));
+}
+
+void StudioController::requestOrder(const std::vector<int>& wanted, const QString& label) {
+  if (!state_.has_session || !window_->garment()) return;
+  const OrderPlan plan = plan_order(*window_->garment(), state_.seed.pieces(), wanted);
+  const QString why = explainMoves(plan);
   // The session gets the order up to the last position that changed: those pieces in that order,
   // and the selection heuristic for the rest (a full explicit order would arrange every remaining
   // piece alone in its batch).
   int last_changed = -1;
-  for (std::size_t i = 0; i < order.size(); ++i)
-    if (i >= shown_order_.size() || shown_order_[i] != order[i]) last_changed = static_cast<int>(i);
-  if (last_changed < 0) return;
-  shown_order_ = order;
-  thread_->reorder(std::vector<int>(order.begin(), order.begin() + last_changed + 1), true);
+  for (std::size_t i = 0; i < plan.order.size(); ++i)
+    if (i >= shown_order_.size() || shown_order_[i] != plan.order[i])
+      last_changed = static_cast<int>(i);
+  if (!why.isEmpty()) window_->statusBar()->showMessage(why, 15000);
+  if (last_changed < 0) {
+    // The list may show the drop; the order stays as it was.
+    showList(shown_order_);
+    return;
+  }
+  recordEdit(label);
+  showList(plan.order);
+  thread_->reorder(std::vector<int>(plan.order.begin(), plan.order.begin() + last_changed + 1),
+                   true);
+}
+
+QString StudioController::explainMoves(const OrderPlan& plan) const {
+  QStringList reasons;
+  bool seed_moved = false;
+  for (const OrderPlan::Moved& moved : plan.moved) {
+    if (moved.seed) {
+      seed_moved = true;
+      continue;
+    }
+    QStringList partners;
+    for (int partner : moved.waits_for) {
+      const auto found = std::find(plan.order.begin(), plan.order.end(), partner);
+      partners
+          << (found == plan.order.end()
+                  ? pieceName(partner)
+                  : tr("%1 (at %2)").arg(pieceName(partner)).arg(found - plan.order.begin() + 1));
+    }
+    reasons << tr("%1 goes to %2, not %3: a piece is arranged only after a piece it is sewn to, "
+                  "and %1 is sewn only to %4")
+                   .arg(pieceName(moved.piece))
+                   .arg(moved.position + 1)
+                   .arg(moved.requested_position + 1)
+                   .arg(partners.join(tr(" and ")));
+  }
+  if (seed_moved) {
+    const std::vector<int> seed = state_.seed.pieces();
+    QStringList names;
+    for (int piece : seed)
+      names << pieceName(piece);
+    reasons.prepend(tr("the seed (%1) is arranged before every batch, so it keeps places 1 to %2; "
+                       "choose the seed in the Manual seed panel")
+                        .arg(names.join(", "))
+                        .arg(seed.size()));
+  }
+  return reasons.join("; ");
 }
 
 void StudioController::arrangeSelectedNext() {
+  // The selection is one across the pattern view, the 3D view and the order list.
   const QList<int> selected = window_->selectedPieces();
   if (selected.isEmpty() || !state_.has_session) {
     window_->statusBar()->showMessage(tr("select a piece to arrange next"), 4000);
     return;
   }
-  const int piece = selected.front();
-  std::vector<int> order;
-  if (!contains(state_.order, piece)) {
-    order = state_.order;  // right after what is arranged now
-  } else {
-    const std::vector<int> seed = state_.seed.pieces();
-    if (contains(seed, piece)) {
-      window_->statusBar()->showMessage(tr("a seed piece is always arranged first"), 4000);
-      return;
-    }
-    order = seed;  // already arranged: as early as possible, right after the seed
+  const std::vector<int> seed = state_.seed.pieces();
+  std::vector<int> chosen;  // in the order the list shows them
+  for (int piece : shown_order_)
+    if (selected.contains(piece) && !contains(seed, piece)) chosen.push_back(piece);
+  if (chosen.empty()) {
+    window_->statusBar()->showMessage(
+        tr("%1 is in the seed, which is arranged before every batch; choose the seed in the "
+           "Manual seed panel")
+            .arg(pieceName(selected.front())),
+        8000);
+    return;
   }
-  order.push_back(piece);
-  thread_->reorder(order, true);
+  // Right after what is arranged now; if a chosen piece is arranged already, right after the seed.
+  bool arranged = false;
+  for (int piece : chosen)
+    arranged = arranged || contains(state_.order, piece);
+  std::vector<int> wanted = arranged ? seed : state_.order;
+  wanted.insert(wanted.end(), chosen.begin(), chosen.end());
+  for (int piece : shown_order_)
+    if (!contains(wanted, piece)) wanted.push_back(piece);
+  QStringList names;
+  for (int piece : chosen)
+    names << pieceName(piece);
+  requestOrder(wanted, tr("arrange %1 next").arg(names.join(", ")));
 }
 
 void StudioController::updateSeedChoice() {
@@ -323,6 +493,7 @@ void StudioController::seedFromChoice() {
     locations.push_back(location.name);
   try {
     SeedPlan plan = manual_seed(*window_->garment(), names, locations[row], locations);
+    recordEdit(tr("seed %1").arg(seedText(plan)));
     thread_->reseed(std::move(plan), true);
   } catch (const std::exception& error) {
     window_->showError(tr("Cannot seed there"), QString::fromUtf8(error.what()));
@@ -371,7 +542,8 @@ QString StudioController::seedText(const SeedPlan& plan) const {
 }
 
 void StudioController::restoreCheckpoint(int row) {
-  if (row < 0 || row >= state_.history.size()) return;
+  if (row < 0 || row >= state_.history.size() || row == state_.current_checkpoint) return;
+  recordEdit(tr("go to history row %1").arg(row));
   thread_->restoreCheckpoint(row);
 }
 

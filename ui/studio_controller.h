@@ -3,14 +3,18 @@
 // session when a pattern and a body are open; drives it from the Run/Pause, Step, Stop and Reset
 // actions; shows its live updates in both views and the status bar, and the garment's quality
 // verdict when it ends; and adds the panels that act on it: the classifier's verdict with a manual
-// seed, the arrangement order (drag, or "arrange next") and the history of checkpoints. Exports go
+// seed, the arrangement order (drag, or "arrange next") and the history of checkpoints; and Undo /
+// Redo of the seed choices, reorders, resets and history jumps (the Edit menu). An order the seams
+// do not allow is corrected before the session gets it, and the status bar says why. Exports go
 // through the worker. Only user interface here: every computation is the engine's, on the worker.
 
 #include <QObject>
 #include <memory>
 
+#include "engine/session/arrangement_order.h"
 #include "ui/arrangement_status_bar.h"
 #include "ui/session_thread.h"
+#include "ui/studio_undo.h"
 
 class QAction;
 class QListWidget;
@@ -38,6 +42,8 @@ class StudioController : public QObject {
   ManualSeedPanel* seedPanel() const { return seed_panel_; }
   QListWidget* historyList() const { return history_list_; }
   QAction* arrangeNextAction() const { return arrange_next_; }
+  QAction* undoAction() const { return undo_action_; }
+  QAction* redoAction() const { return redo_action_; }
 
   // What the File menu's export entries do after asking for a file name.
   void exportTo(SessionThread::ExportKind kind, const QString& path);
@@ -55,8 +61,23 @@ class StudioController : public QObject {
   void applyState(const SessionState& state);
   void updateActions();
   void showOrder(const std::vector<int>& arranged);
+  // `order` in the order list, with each row's batch, keeping the selection.
+  void showList(const std::vector<int>& order);
   void orderDragged(const QList<int>& order);
   void arrangeSelectedNext();
+  // Asks the session for `wanted` (the whole list) as the seams allow it, recorded as an edit
+  // named `label`; says why when a piece cannot go where it was put.
+  void requestOrder(const std::vector<int>& wanted, const QString& label);
+  // Why pieces of `plan` are not where they were asked to be ("" when they all are).
+  QString explainMoves(const OrderPlan& plan) const;
+  void resetArrangement();
+  // Undo / Redo of the edits below, and the edits' record.
+  StudioPlace place() const { return {state_.current_checkpoint, state_.requested_order}; }
+  void recordEdit(const QString& label);
+  void undoEdit();
+  void redoEdit();
+  void updateUndoActions();
+  QString pieceName(int piece) const;
   void seedFromChoice();
   void updateSeedChoice();
   void showClassification(const SessionState& state);
@@ -79,6 +100,9 @@ class StudioController : public QObject {
   ManualSeedPanel* seed_panel_ = nullptr;
   QListWidget* history_list_ = nullptr;
   QAction* arrange_next_ = nullptr;
+  QAction* undo_action_ = nullptr;
+  QAction* redo_action_ = nullptr;
+  StudioUndo undo_;
 };
 
 }  // namespace garment::ui

@@ -6,6 +6,7 @@
 
 #include "engine/post_process/post_process.h"
 #include "engine/seeding/seed_shape.h"
+#include "engine/session/arrangement_order.h"
 #include "engine/solver/chebyshev_solver.h"
 
 namespace garment {
@@ -62,7 +63,7 @@ Session::Session(std::shared_ptr<const Scene> scene, SessionOptions options)
   state_.arranged.assign(garment.pieces.size(), false);
   state_.pieces.assign(garment.pieces.size(), PieceState::Waiting);
   state_.explicit_order = options_.order;
-  checkpoint(true);
+  checkpoint(true, -1);
 }
 
 Session::Session(const Session& from, std::size_t index, SessionOptions options)
@@ -75,14 +76,18 @@ Session::Session(const Session& from, std::size_t index, SessionOptions options)
   if (!resumed.batch_complete || resumed.state.batch)
     throw std::logic_error("a session continues another only from between batches");
   build_arrangement(*scene_->garment);
-  for (std::size_t i = 0; i < index; ++i)
-    if (from.checkpoints_[i].batch_complete) checkpoints_.push_back(from.checkpoints_[i]);
+  // The way to it, one checkpoint after the other (its siblings belong to other continuations).
+  for (std::size_t i : from.checkpoint_path(index)) {
+    if (i == index || !from.checkpoints_[i].batch_complete) continue;
+    checkpoints_.push_back(from.checkpoints_[i]);
+    checkpoints_.back().parent = static_cast<int>(checkpoints_.size()) - 2;
+  }
   state_ = resumed.state;
   state_.report.cancelled = false;
   state_.explicit_order.clear();
   for (int piece : options_.order)
     if (!state_.arranged[piece]) state_.explicit_order.push_back(piece);
-  checkpoint(true);
+  checkpoint(true, static_cast<int>(checkpoints_.size()) - 1);
 }
 
 Session::~Session() = default;
@@ -99,9 +104,10 @@ double Session::checkpoint_work(std::size_t index) const {
 }
 
 std::size_t Session::checkpoint_before_batch(int batch) const {
-  if (batch < 0) return 0;
-  std::size_t found = 0;
-  for (std::size_t i = 0; i < checkpoints_.size(); ++i) {
+  const std::vector<std::size_t> path = checkpoint_path(current_);
+  std::size_t found = path.front();
+  if (batch < 0) return found;
+  for (std::size_t i : path) {
     const State& state = checkpoints_[i].state;
     if (checkpoints_[i].batch_complete && state.phase == Phase::Select &&
         static_cast<int>(state.report.batches.size()) == batch)
@@ -110,18 +116,35 @@ std::size_t Session::checkpoint_before_batch(int batch) const {
   return found;
 }
 
-void Session::checkpoint(bool batch_complete) {
-  checkpoints_.push_back({state_, batch_complete});
+std::vector<std::size_t> Session::checkpoint_path(std::size_t index) const {
+  std::vector<std::size_t> path;
+  // Parents are always taken before their children, so the walk ends.
+  for (int i = static_cast<int>(index); i >= 0; i = checkpoints_[i].parent)
+    path.push_back(static_cast<std::size_t>(i));
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+void Session::checkpoint(bool batch_complete, int parent) {
+  checkpoints_.push_back({state_, batch_complete, parent, options_.seed, options_.order});
+  current_ = checkpoints_.size() - 1;
 }
 
 Phase Session::checkpoint_phase(std::size_t index) const {
   return checkpoints_.at(index).state.phase;
 }
 
+int Session::checkpoint_parent(std::size_t index) const {
+  return checkpoints_.at(index).parent;
+}
+
 void Session::restore(std::size_t index) {
   if (index >= checkpoints_.size()) return;
-  state_ = checkpoints_[index].state;
-  checkpoints_.resize(index + 1);
+  const Checkpoint& checkpoint = checkpoints_[index];
+  state_ = checkpoint.state;
+  options_.seed = checkpoint.seed;
+  options_.order = checkpoint.order;
+  current_ = index;
 }
 
 SessionSnapshot Session::snapshot() const {
@@ -200,7 +223,8 @@ Phase Session::step(SessionObserver* observer) {
   }
   state_.report.seconds += now_seconds() - start;
   state_.report.cancelled = false;  // the report describes where the session stands now
-  checkpoint(ran == Phase::Seed || (ran == Phase::Check && !state_.batch));
+  checkpoint(ran == Phase::Seed || (ran == Phase::Check && !state_.batch),
+             static_cast<int>(current_));
   if (observer) observer->snapshot(snapshot());
   return ran;
 }
@@ -238,15 +262,10 @@ void Session::run_seed(SessionObserver* observer) {
 std::vector<int> Session::next_explicit_batch() const {
   // The first requested piece that can be aligned now (sewn to the arranged set), alone in its
   // batch: an explicit order is how a user separates layers (§8.3.2), which one batch cannot.
-  const Garment& garment = *scene_->garment;
-  for (int piece : state_.explicit_order) {
-    if (state_.arranged[piece]) continue;
-    for (Eigen::Index k = 0; k < garment.sewing_pairs.rows(); ++k) {
-      const int a = garment.vertex_piece(garment.sewing_pairs(k, 0));
-      const int b = garment.vertex_piece(garment.sewing_pairs(k, 1));
-      if ((a == piece && state_.arranged[b]) || (b == piece && state_.arranged[a])) return {piece};
-    }
-  }
+  // plan_order (arrangement_order.h) predicts this choice for an editor.
+  for (int piece : state_.explicit_order)
+    if (!state_.arranged[piece] && sewn_to_arranged(*scene_->garment, piece, state_.arranged))
+      return {piece};
   return {};
 }
 
@@ -392,23 +411,34 @@ void Session::reorder(const std::vector<int>& order) {
         state_.explicit_order.push_back(piece);
     return;
   }
-  // The latest batch-complete checkpoint whose arranged order is a prefix of the new order.
-  std::size_t keep = 0;
-  for (std::size_t i = 0; i < checkpoints_.size(); ++i) {
+  // The latest batch-complete checkpoint on the way here whose arranged order is a prefix of the
+  // new order.
+  const std::vector<std::size_t> path = checkpoint_path(current_);
+  std::size_t keep = path.front();
+  for (std::size_t i : path) {
     if (!checkpoints_[i].batch_complete) continue;
     const std::vector<int>& done_order = checkpoints_[i].state.report.order;
     if (done_order.size() <= order.size() &&
         std::equal(done_order.begin(), done_order.end(), order.begin()))
       keep = i;
   }
+  const std::optional<SeedPlan> seed = options_.seed;
   restore(keep);
+  // Continues from there with this order alone: what was left of the checkpoint's own order
+  // (which the checkpoint keeps) would otherwise go first.
+  options_.seed = seed;
+  options_.order = order;
+  state_.explicit_order.clear();
   for (int piece : order)
     if (!state_.arranged[piece]) state_.explicit_order.push_back(piece);
 }
 
 void Session::reseed(std::optional<SeedPlan> seed) {
+  // Every start holds the same state; the order asked for applies to the new seed too.
+  state_ = checkpoints_.front().state;
   options_.seed = std::move(seed);
-  restore(0);
+  state_.explicit_order = options_.order;
+  checkpoint(true, -1);
 }
 
 }  // namespace garment

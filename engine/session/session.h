@@ -9,7 +9,10 @@
 // the same way; an observer sees progress, receives snapshots (also during solves, throttled) and
 // can cancel. The arrangement order is recorded; an explicit order and a manual seed are accepted.
 // A checkpoint is kept after every phase, so the editor can go back to any of them and continue,
-// and reorder() re-runs from the first batch that changes, reusing the state before it.
+// and reorder() re-runs from the first batch that changes, reusing the state before it. No
+// checkpoint is ever dropped: each one records the checkpoint it continues (its parent), so that
+// going back and continuing differently starts a branch beside the later checkpoints, which stay
+// reachable; each one also keeps the seed and order it was made with.
 // A session is used from one thread at a time.
 
 #include <Eigen/Core>
@@ -116,14 +119,20 @@ class Session {
   // The seed the classifier proposes (used unless options().seed is set).
   const SeedPlan& automatic_seed() const { return automatic_seed_; }
 
-  // Checkpoints: one before the first phase and one after each completed phase.
+  // Checkpoints: one before the first phase (another one for each reseed) and one after each
+  // completed phase, in the order they were taken; none is dropped.
   std::size_t checkpoint_count() const { return checkpoints_.size(); }
   Phase checkpoint_phase(std::size_t index) const;
-  // Makes checkpoint `index` current and drops the later ones.
+  // The checkpoint `index` continues from (-1 for a start: the first, or one made by reseed()).
+  int checkpoint_parent(std::size_t index) const;
+  // The checkpoint the session stands at or continues from: the last one restored or taken.
+  std::size_t current_checkpoint() const { return current_; }
+  // Makes checkpoint `index` current, with the seed and order it was made with; the others stay.
+  // Out of range: nothing happens.
   void restore(std::size_t index);
   // The checkpoint taken between batches just before batch `batch` (report().batches) was
-  // selected: 0 (before the seed) for -1, the one before the post-process for the number of
-  // batches.
+  // selected, on the way to the current checkpoint: its start for -1, the one before the
+  // post-process for the number of batches.
   std::size_t checkpoint_before_batch(int batch) const;
   // The session's work (SessionReport::work) when checkpoint `index` was taken.
   double checkpoint_work(std::size_t index) const;
@@ -131,7 +140,8 @@ class Session {
   // Arranges in `order` from the first batch whose pieces differ from it, reusing the state
   // before that batch. Also accepted before the session started.
   void reorder(const std::vector<int>& order);
-  // Starts over from the seed with a manual seed (nullopt: the classifier's).
+  // Starts over from the seed with a manual seed (nullopt: the classifier's), keeping the order:
+  // a new start checkpoint.
   void reseed(std::optional<SeedPlan> seed);
 
  private:
@@ -156,7 +166,10 @@ class Session {
   };
   struct Checkpoint {
     State state;
-    bool batch_complete = false;  // taken right after a batch was accepted (or after the seed)
+    bool batch_complete = false;   // taken right after a batch was accepted (or after the seed)
+    int parent = -1;               // the checkpoint this one continues
+    std::optional<SeedPlan> seed;  // SessionOptions::seed and order when it was taken
+    std::vector<int> order;
   };
 
   void build_arrangement(const Garment& garment);  // context_, selector_, termination_
@@ -169,7 +182,9 @@ class Session {
   void record_phase(const PhaseRecord& record);  // appends it and counts its work
   void accept_batch();
   void run_post_process(SessionObserver* observer);
-  void checkpoint(bool batch_complete);
+  void checkpoint(bool batch_complete, int parent);
+  // Checkpoint `index` and the ones it continues from, oldest first.
+  std::vector<std::size_t> checkpoint_path(std::size_t index) const;
   std::vector<int> next_explicit_batch() const;
   // Whether `order` begins with what is arranged, then the batch in progress (in any order).
   bool order_continues_current(const std::vector<int>& order) const;
@@ -183,6 +198,7 @@ class Session {
   SeedPlan automatic_seed_;
   State state_;
   std::vector<Checkpoint> checkpoints_;
+  std::size_t current_ = 0;
   double started_ = 0.0;  // steady clock seconds at construction, for snapshots
 };
 

@@ -5,7 +5,10 @@
 // - step() runs exactly one phase: it returns the phase that was current, adds one checkpoint
 //   and at most one phase record, and moves along the documented transitions only;
 // - piece states and the recorded order follow the batches;
-// - restore(i) gives back checkpoint i exactly (positions, phase) and drops the later ones;
+// - restore(i) gives back checkpoint i exactly (positions, phase) and keeps the later ones: going
+//   back and continuing makes a branch beside them, and they can be restored again;
+// - reseed() starts a new branch and keeps the order; restore() gives back each checkpoint's seed
+//   and order;
 // - reorder() with the order already arranged leaves the state unchanged at batch boundaries,
 //   in the middle of a batch and at the end;
 // - a cancelled step leaves the session as before the step, and it continues from there;
@@ -402,23 +405,34 @@ class SessionTest : public QObject {
     for (std::size_t i = 0; i < positions.size(); ++i)
       QCOMPARE(session.checkpoint_phase(i), phases[i]);
 
-    // From the last checkpoint backwards, skipping some; each restore drops the later ones.
-    const std::size_t last = positions.size() - 1;
-    for (std::size_t i : {last, last - 1, last / 2 + 1, last / 2, std::size_t{3}, std::size_t{1}}) {
+    // From the last checkpoint backwards, skipping some, and forward again; none is dropped.
+    const std::size_t count = positions.size(), last = count - 1;
+    for (std::size_t i :
+         {last, last - 1, last / 2 + 1, last / 2, std::size_t{3}, std::size_t{1}, last / 2, last}) {
       session.restore(i);
-      QCOMPARE(session.checkpoint_count(), i + 1);
+      QCOMPARE(session.checkpoint_count(), count);
+      QCOMPARE(session.current_checkpoint(), i);
       QCOMPARE(session.phase(), phases[i]);
       QVERIFY2(session.positions() == positions[i], qPrintable(QString("checkpoint %1").arg(i)));
       QCOMPARE(*session.snapshot().positions, positions[i]);
     }
     // Out of range: nothing happens.
-    session.restore(100);
-    QCOMPARE(session.checkpoint_count(), std::size_t{2});
+    session.restore(1);
+    session.restore(count + 100);
+    QCOMPARE(session.checkpoint_count(), count);
     QVERIFY(session.positions() == positions[1]);
 
-    // The session continues from a restored checkpoint along the same phases.
+    // The session continues from a restored checkpoint along the same phases: a branch from it,
+    // beside the later checkpoints, which are still there.
     session.step();
     QCOMPARE(session.phase(), phases[2]);
+    QCOMPARE(session.checkpoint_count(), count + 1);
+    QCOMPARE(session.current_checkpoint(), count);
+    QCOMPARE(session.checkpoint_parent(count), 1);
+    QCOMPARE(session.checkpoint_parent(2), 1);
+    session.restore(last);
+    QVERIFY(session.done());
+    QVERIFY(session.positions() == positions[last]);
     session.restore(0);
     QCOMPARE(session.phase(), Phase::Seed);
     QVERIFY(session.positions() == positions[0]);
@@ -467,6 +481,47 @@ class SessionTest : public QObject {
     session.run();
     QVERIFY(session.done());
     check_unchanged("at the end");
+  }
+
+  void reseed_and_reorder_keep_what_was_done() {
+    Session session(scene_, small_options());
+    session.run();
+    const std::size_t finished = session.current_checkpoint();
+    const std::vector<int> first_order = session.report().order;
+    const std::vector<int> seed = session.report().seed.pieces();
+    QVERIFY(first_order.size() > seed.size() + 1);
+    // The last piece arranged, asked right after the seed: the run goes back to after the seed.
+    std::vector<int> asked = seed;
+    asked.push_back(first_order.back());
+    session.reorder(asked);
+    QCOMPARE(session.options().order, asked);
+    QCOMPARE(session.report().order, seed);
+    const std::size_t after_seed = session.current_checkpoint();
+    QCOMPARE(session.checkpoint_phase(after_seed), Phase::Select);
+    const std::size_t branch = session.checkpoint_count();
+    session.run();
+    QCOMPARE(session.report().order[seed.size()], first_order.back());
+    QCOMPARE(session.checkpoint_parent(branch), static_cast<int>(after_seed));
+    // The first run's end is still there, with the order it was made with (none).
+    session.restore(finished);
+    QVERIFY(session.done());
+    QCOMPARE(session.report().order, first_order);
+    QVERIFY(session.options().order.empty());
+
+    // A reseed keeps the order asked for and starts a new branch; the old start stays.
+    session.reorder(asked);
+    const std::size_t before_reseed = session.checkpoint_count();
+    SeedPlan manual = session.automatic_seed();
+    manual.manual = true;
+    session.reseed(manual);
+    QCOMPARE(session.checkpoint_count(), before_reseed + 1);
+    QCOMPARE(session.current_checkpoint(), before_reseed);
+    QCOMPARE(session.checkpoint_parent(before_reseed), -1);
+    QCOMPARE(session.phase(), Phase::Seed);
+    QCOMPARE(session.options().order, asked);
+    QVERIFY(session.options().seed && session.options().seed->manual);
+    session.restore(0);
+    QVERIFY(!session.options().seed);
   }
 
   void cancelled_step_leaves_the_state_as_before() {

@@ -349,9 +349,12 @@ class StudioSessionTest : public QObject {
       QVERIFY(!state().running);
       QVERIFY(state().phase != phase);  // every phase hands over to another one
     }
-    // The history goes back to a checkpoint; the session continues from there.
+    // The history goes back to a checkpoint, keeping the later ones; the session continues from
+    // there.
+    const qsizetype rows = state().history.size();
     controller_->restoreCheckpoint(1);
-    QVERIFY(waitFor([](const ui::SessionState& s) { return s.history.size() == 2; }, 30000));
+    QVERIFY(waitFor([](const ui::SessionState& s) { return s.current_checkpoint == 1; }, 30000));
+    QCOMPARE(state().history.size(), rows);
     QCOMPARE(state().phase, Phase::Select);  // after the seed
     const int completed = state().phases_completed;
     step->trigger();

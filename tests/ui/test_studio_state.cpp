@@ -111,8 +111,8 @@ class StudioStateTest : public QObject {
     QAction* reset = window_->sessionActions().reset;
     QVERIFY(reset->isEnabled());
     reset->trigger();
-    QVERIFY(
-        waitFor([](const ui::SessionState& s) { return !s.done && s.history.size() == 1; }, 60000));
+    QVERIFY(waitFor([](const ui::SessionState& s) { return !s.done && s.current_checkpoint == 0; },
+                    60000));
     QCOMPARE(shown().elapsed_seconds, 0.0);
     QCOMPARE(window_->arrangementStatusBar()->elapsedText(), QString("0:00.0"));
   }

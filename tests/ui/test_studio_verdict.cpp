@@ -205,8 +205,8 @@ class StudioVerdictTest : public QObject {
 
     // Reset: the garment is no longer the one judged.
     window_->sessionActions().reset->trigger();
-    QVERIFY(
-        waitFor([](const ui::SessionState& s) { return !s.done && s.history.size() == 1; }, 60000));
+    QVERIFY(waitFor([](const ui::SessionState& s) { return !s.done && s.current_checkpoint == 0; },
+                    60000));
     verifyNoVerdict();
   }
 
