@@ -195,6 +195,32 @@ inline void add_cylinder(BodyMesh& body, const Eigen::Vector3d& a, const Eigen::
     body.triangles.row(old_triangles + static_cast<Eigen::Index>(t)) = triangles[t].transpose();
 }
 
+// The quality tests' tube and flap: two halves `half_round` across and 0.4 m up sewn at both sides
+// into a tube (pieces kFront and kBack), and a free 0.2 m square flap (kFlap).
+inline constexpr int kFront = 0, kBack = 1, kFlap = 2;
+inline Garment tube_and_flap(double half_round) {
+  Garment garment = grid_garment(
+      {{"front", half_round, 0.4, 21, 11}, {"back", half_round, 0.4, 21, 11}, {"flap", 0.2, 0.2}});
+  sew_right_to_left(garment, kFront, kBack);
+  sew_right_to_left(garment, kBack, kFront);
+  return garment;
+}
+
+// The tube wrapped round the vertical axis at `radius` from y = 1, scaled round by `stretch`; the
+// flap flat and upright at z = 0.45 (x in [-0.1, 0.1], y in [1.1, 1.3]), clear of the cylinder
+// body. #V by 3.
+inline Eigen::MatrixX3d tube_and_flap_state(const Garment& garment, double radius,
+                                            double stretch = 1.0) {
+  Eigen::MatrixX3d positions(garment.vertex_count(), 3);
+  wrap_on_cylinder(garment, kFront, radius, 0.0, 1.0, positions);
+  wrap_on_cylinder(garment, kBack, radius, std::numbers::pi, 1.0, positions);
+  positions.col(0) *= stretch;
+  positions.col(2) *= stretch;
+  place_flat(garment, kFlap, Eigen::Vector3d(-0.1, 1.1, 0.45), Eigen::Vector3d::UnitX(),
+             Eigen::Vector3d::UnitY(), positions);
+  return positions;
+}
+
 // A torso: one upright cylinder of radius 0.15 m from the floor to 1.8 m.
 inline BodyMesh cylinder_body() {
   BodyMesh body;

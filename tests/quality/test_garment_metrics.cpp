@@ -16,28 +16,15 @@ using namespace garment::test;
 
 namespace {
 
-constexpr int kFront = 0, kBack = 1, kFlap = 2;
 constexpr double kTubeRadius = 0.25;
 
-// A tube of two halves sewn at both sides around the cylinder body, and a free flap hanging flat
-// in front of it (x ∈ [-0.1, 0.1], y ∈ [1.1, 1.3], z = 0.45).
+// The tube round the cylinder body (radius 0.15 m) at kTubeRadius, the flap hanging in front.
 Garment tube_and_flap() {
-  const double half_round = std::numbers::pi * kTubeRadius;
-  Garment garment = grid_garment({{"front", half_round, 0.4, 21, 11},
-                                  {"back", half_round, 0.4, 21, 11},
-                                  {"flap", 0.2, 0.2, 11, 11}});
-  sew_right_to_left(garment, kFront, kBack);
-  sew_right_to_left(garment, kBack, kFront);
-  return garment;
+  return test::tube_and_flap(std::numbers::pi * kTubeRadius);
 }
 
 Eigen::MatrixX3d clean_state(const Garment& garment) {
-  Eigen::MatrixX3d positions(garment.vertex_count(), 3);
-  wrap_on_cylinder(garment, kFront, kTubeRadius, 0.0, 1.0, positions);
-  wrap_on_cylinder(garment, kBack, kTubeRadius, std::numbers::pi, 1.0, positions);
-  place_flat(garment, kFlap, Eigen::Vector3d(-0.1, 1.1, 0.45), Eigen::Vector3d::UnitX(),
-             Eigen::Vector3d::UnitY(), positions);
-  return positions;
+  return tube_and_flap_state(garment, kTubeRadius);
 }
 
 void move_piece(const Garment& garment, int piece, const Eigen::Vector3d& offset,

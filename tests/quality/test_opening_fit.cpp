@@ -19,30 +19,6 @@ using namespace garment::test;
 
 namespace {
 
-constexpr int kFront = 0, kBack = 1, kFlap = 2;
-
-// Two halves of `half_round` across and 0.4 m up sewn into a tube, and a 0.2 m square flap.
-Garment tube_and_flap(double half_round) {
-  Garment garment = grid_garment(
-      {{"front", half_round, 0.4, 21, 11}, {"back", half_round, 0.4, 21, 11}, {"flap", 0.2, 0.2}});
-  sew_right_to_left(garment, kFront, kBack);
-  sew_right_to_left(garment, kBack, kFront);
-  return garment;
-}
-
-// The tube wrapped round the vertical axis at `radius` from y = 1, scaled round by `stretch`; the
-// flap flat and upright at z = 0.45, clear of the body.
-Eigen::MatrixX3d tube_state(const Garment& garment, double radius, double stretch) {
-  Eigen::MatrixX3d positions(garment.vertex_count(), 3);
-  wrap_on_cylinder(garment, kFront, radius, 0.0, 1.0, positions);
-  wrap_on_cylinder(garment, kBack, radius, std::numbers::pi, 1.0, positions);
-  positions.col(0) *= stretch;
-  positions.col(2) *= stretch;
-  place_flat(garment, kFlap, Eigen::Vector3d(-0.1, 1.1, 0.45), Eigen::Vector3d::UnitX(),
-             Eigen::Vector3d::UnitY(), positions);
-  return positions;
-}
-
 // The cylinder body's section: a regular 48-gon of radius 0.15 (constructed_garment.h).
 double cylinder_girth() {
   return 48 * 2.0 * 0.15 * std::sin(std::numbers::pi / 48);
@@ -114,7 +90,7 @@ class OpeningFitTest : public QObject {
 
   void girth_inside_rings_round_the_body() {
     const Garment garment = tube_and_flap(std::numbers::pi * 0.25);
-    const Eigen::MatrixX3d positions = tube_state(garment, 0.25, 1.0);
+    const Eigen::MatrixX3d positions = tube_and_flap_state(garment, 0.25, 1.0);
     for (const Opening& opening : openings_of(garment)) {
       const double girth = body_girth_inside(opening, positions, body_);
       if (opening.pieces.front() == kFlap)
@@ -141,8 +117,9 @@ class OpeningFitTest : public QObject {
     const double rest_round = 2.0 * std::numbers::pi * 0.1;
     const Garment garment = tube_and_flap(0.5 * rest_round);
     const BodyReference reference(body_);
-    const GarmentMetrics metrics = measure_garment(
-        garment, tube_state(garment, 0.1, 1.6), &reference, expected_regions_from_names(garment));
+    const GarmentMetrics metrics =
+        measure_garment(garment, tube_and_flap_state(garment, 0.1, 1.6), &reference,
+                        expected_regions_from_names(garment));
     const OpeningFit& tight = metrics.tightest_opening;
     QCOMPARE(tight.pieces, (std::vector<int>{kFront, kBack}));
     QVERIFY(std::abs(tight.rest_length_m - rest_round) < 1e-9);
@@ -159,7 +136,7 @@ class OpeningFitTest : public QObject {
   void loose_tube_names_no_opening() {
     const Garment garment = tube_and_flap(std::numbers::pi * 0.25);
     const BodyReference reference(body_);
-    Eigen::MatrixX3d positions = tube_state(garment, 0.25, 1.0);
+    Eigen::MatrixX3d positions = tube_and_flap_state(garment, 0.25, 1.0);
     // Stretched along its length only: a strain failure, but no opening is too small.
     positions.col(1) = (positions.col(1).array() - 1.0) * 1.3 + 1.0;
     const GarmentMetrics metrics =

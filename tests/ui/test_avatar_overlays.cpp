@@ -92,20 +92,14 @@ class AvatarOverlaysTest : public QObject {
   }
 
   void showFlat(std::shared_ptr<const Garment> garment, double depth, double scale) {
-    view_->setBody(test::sphere_body(kSphereCentre, kSphereRadius));
-    view_->setGarment(garment);
-    view_->setGarmentPositions(test::sheet_positions(*garment, depth, 1.0, scale));
-    view_->setOrbit(0, 0);
-    view_->frameAll();
+    test::show_flat_before_sphere(*view_, std::move(garment), kSphereCentre, kSphereRadius, depth,
+                                  scale);
   }
 
  private slots:
   void initTestCase() {
-    view_ = std::make_unique<ui::AvatarView>();
-    view_->resize(480, 400);
-    view_->show();
-    QVERIFY(QTest::qWaitForWindowExposed(view_.get()));
-    QVERIFY2(view_->renderingAvailable(), "OpenGL 3.3 core context or shaders unavailable");
+    test::show_avatar_view(view_);
+    if (QTest::currentTestFailed()) return;
     demo_ = test::demo_garment();
     skirt_ = std::make_shared<const Garment>(build_garment(load_pattern(
         test::test_data(std::filesystem::path("patterns") / "skirts__skirt_4_panels.json")

@@ -27,21 +27,14 @@ class AvatarViewTest : public QObject {
 
   // The demo's pieces laid out in a plane in front of a sphere body, seen from the front.
   void showFlatGarment() {
-    view_->setBody(test::sphere_body(Eigen::Vector3d(0, 1, 0), 0.3));
-    view_->setGarment(garment_);
-    view_->setGarmentPositions(test::sheet_positions(*garment_, 0.5, 1.0, 0.8));
-    view_->setOrbit(0, 0);
-    view_->frameAll();
+    test::show_flat_before_sphere(*view_, garment_, Eigen::Vector3d(0, 1, 0), 0.3, 0.5, 0.8);
   }
 
  private slots:
   // One view (one OpenGL context, shaders compiled once) for all tests; init() empties it.
   void initTestCase() {
-    view_ = std::make_unique<ui::AvatarView>();
-    view_->resize(480, 400);
-    view_->show();
-    QVERIFY(QTest::qWaitForWindowExposed(view_.get()));
-    QVERIFY2(view_->renderingAvailable(), "OpenGL 3.3 core context or shaders unavailable");
+    test::show_avatar_view(view_);
+    if (QTest::currentTestFailed()) return;
     garment_ = test::demo_garment();
   }
 

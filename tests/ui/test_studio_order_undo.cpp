@@ -22,6 +22,7 @@
 #include <functional>
 #include <set>
 
+#include "tests/ui/studio_harness.h"
 #include "tests/ui/ui_test_support.h"
 #include "ui/arrangement_order_list.h"
 #include "ui/main_window.h"
@@ -40,44 +41,11 @@ const QStringList kFirstOrder =
 // check for the batch (with one revisit), the last select, the post-process.
 constexpr int kFirstHistoryRows = 13;
 
-class StudioOrderUndoTest : public QObject {
+class StudioOrderUndoTest : public QObject, test::StudioHarness {
   Q_OBJECT
 
  private:
-  std::unique_ptr<ui::MainWindow> window_;
-  std::unique_ptr<ui::StudioController> controller_;
-  QStringList errors_;
-
-  void open() {
-    controller_.reset();
-    window_ = std::make_unique<ui::MainWindow>();
-    window_->setErrorPresenter([this](const QString& title, const QString& message) {
-      errors_ << title + ": " + message;
-    });
-    window_->resize(1100, 700);
-    controller_ = std::make_unique<ui::StudioController>(window_.get(), test::quick_options());
-    QVERIFY(window_->openDemoPattern());
-    QVERIFY(window_->openDefaultBody());
-    window_->show();
-    QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
-    // The shortcuts are the window's: it must be the active one.
-    window_->activateWindow();
-    QVERIFY(QTest::qWaitForWindowActive(window_.get()));
-    QVERIFY(QTest::qWaitFor([this] { return state().has_session; }, 60000));
-  }
-
-  const ui::SessionState& state() const { return controller_->state(); }
-
-  bool waitFor(const std::function<bool(const ui::SessionState&)>& predicate, int timeout_ms) {
-    if (predicate(state())) return true;
-    QEventLoop loop;
-    QTimer::singleShot(timeout_ms, &loop, &QEventLoop::quit);
-    connect(controller_.get(), &ui::StudioController::stateApplied, &loop, [&] {
-      if (predicate(state())) loop.quit();
-    });
-    loop.exec();
-    return predicate(state());
-  }
+  void open() { openStudio({test::quick_options(), {1100, 700}, {}, {}, true}); }
 
   // Runs the session to the end from where it is.
   bool runToEnd() {

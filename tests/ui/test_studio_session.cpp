@@ -27,6 +27,7 @@
 
 #include "engine/io/garment_obj.h"
 #include "tests/support/test_environment.h"
+#include "tests/ui/studio_harness.h"
 #include "tests/ui/ui_test_support.h"
 #include "ui/arrangement_order_list.h"
 #include "ui/avatar_view.h"
@@ -56,44 +57,13 @@ int index_of(const std::vector<int>& values, int value) {
 
 }  // namespace
 
-class StudioSessionTest : public QObject {
+class StudioSessionTest : public QObject, test::StudioHarness {
   Q_OBJECT
 
  private:
-  std::unique_ptr<ui::MainWindow> window_;
-  std::unique_ptr<ui::StudioController> controller_;
-  QStringList errors_;
-
   // A window on the demo and the default body with a session ready (nothing run yet).
   void open(SessionOptions options, QSize size = {1100, 700}) {
-    controller_.reset();
-    window_ = std::make_unique<ui::MainWindow>();
-    window_->setErrorPresenter([this](const QString& title, const QString& message) {
-      errors_ << title + ": " + message;
-    });
-    // Small enough that the software renderer under Xvfb keeps up, like a laptop window would.
-    window_->resize(size);
-    controller_ = std::make_unique<ui::StudioController>(window_.get(), std::move(options));
-    QVERIFY(window_->openDemoPattern());
-    QVERIFY(window_->openDefaultBody());
-    window_->show();
-    QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
-    QVERIFY(QTest::qWaitFor([this] { return state().has_session; }, 60000));
-  }
-
-  const ui::SessionState& state() const { return controller_->state(); }
-
-  // Waits in a real event loop, as the application does: QTest::qWaitFor sleeps 10 ms between
-  // rounds of event processing, which would count against the window's latency.
-  bool waitFor(const std::function<bool(const ui::SessionState&)>& predicate, int timeout_ms) {
-    if (predicate(state())) return true;
-    QEventLoop loop;
-    QTimer::singleShot(timeout_ms, &loop, &QEventLoop::quit);
-    connect(controller_.get(), &ui::StudioController::stateApplied, &loop, [&] {
-      if (predicate(state())) loop.quit();
-    });
-    loop.exec();
-    return predicate(state());
+    openStudio({std::move(options), size, {}, {}, false});
   }
 
   QImage avatarImage() {

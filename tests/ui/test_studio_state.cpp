@@ -16,6 +16,7 @@
 
 #include "engine/quality/flat_placement.h"
 #include "support/test_paths.h"
+#include "tests/ui/studio_harness.h"
 #include "tests/ui/ui_test_support.h"
 #include "ui/avatar_view.h"
 #include "ui/main_window.h"
@@ -33,43 +34,14 @@ double seconds(const QElapsedTimer& timer) {
 
 }  // namespace
 
-class StudioStateTest : public QObject {
+class StudioStateTest : public QObject, test::StudioHarness {
   Q_OBJECT
 
  private:
-  std::unique_ptr<ui::MainWindow> window_;
-  std::unique_ptr<ui::StudioController> controller_;
-  QStringList errors_;
-
   // A window on the demo and the default body with a session ready (nothing run yet).
-  void open() {
-    controller_.reset();
-    window_ = std::make_unique<ui::MainWindow>();
-    window_->setErrorPresenter([this](const QString& title, const QString& message) {
-      errors_ << title + ": " + message;
-    });
-    window_->resize(1100, 700);
-    controller_ = std::make_unique<ui::StudioController>(window_.get(), test::quick_options());
-    QVERIFY(window_->openDemoPattern());
-    QVERIFY(window_->openDefaultBody());
-    window_->show();
-    QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
-    QVERIFY(QTest::qWaitFor([this] { return state().has_session; }, 120000));
-  }
+  void open() { openStudio({test::quick_options(), {1100, 700}, {}, {}, false}); }
 
-  const ui::SessionState& state() const { return controller_->state(); }
   const ui::ArrangementStatus& shown() const { return window_->arrangementStatusBar()->status(); }
-
-  bool waitFor(const std::function<bool(const ui::SessionState&)>& predicate, int timeout_ms) {
-    if (predicate(state())) return true;
-    QEventLoop loop;
-    QTimer::singleShot(timeout_ms, &loop, &QEventLoop::quit);
-    connect(controller_.get(), &ui::StudioController::stateApplied, &loop, [&] {
-      if (predicate(state())) loop.quit();
-    });
-    loop.exec();
-    return predicate(state());
-  }
 
   void runToTheEnd() {
     window_->sessionActions().run_pause->trigger();

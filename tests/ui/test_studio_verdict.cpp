@@ -32,6 +32,7 @@
 #include "engine/recovery/verdict_rank.h"
 #include "support/test_environment.h"
 #include "support/test_paths.h"
+#include "tests/ui/studio_harness.h"
 #include "tests/ui/ui_test_support.h"
 #include "ui/avatar_view.h"
 #include "ui/main_window.h"
@@ -57,7 +58,7 @@ const QColor kRed(0xc6, 0x28, 0x28), kGreen(0x2e, 0x7d, 0x32);
 
 }  // namespace
 
-class StudioVerdictTest : public QObject {
+class StudioVerdictTest : public QObject, test::StudioHarness {
   Q_OBJECT
 
  private:
@@ -65,37 +66,10 @@ class StudioVerdictTest : public QObject {
   // thread count (it is part of the input): one thread here, whatever the machine, as a 2-core
   // machine runs it.
   const tbb::global_control one_thread_{tbb::global_control::max_allowed_parallelism, 1};
-  std::unique_ptr<ui::MainWindow> window_;
-  std::unique_ptr<ui::StudioController> controller_;
-  QStringList errors_;
 
   // A window on a pattern and a body with a session ready (nothing run yet).
   void open(const QString& pattern, const QString& body, SessionOptions options) {
-    controller_.reset();
-    window_ = std::make_unique<ui::MainWindow>();
-    window_->setErrorPresenter([this](const QString& title, const QString& message) {
-      errors_ << title + ": " + message;
-    });
-    window_->resize(1300, 900);
-    controller_ = std::make_unique<ui::StudioController>(window_.get(), std::move(options));
-    QVERIFY2(window_->openPattern(pattern), qPrintable(errors_.join("\n")));
-    QVERIFY2(window_->openBody(body), qPrintable(errors_.join("\n")));
-    window_->show();
-    QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
-    QVERIFY(QTest::qWaitFor([this] { return state().has_session; }, 120000));
-  }
-
-  const ui::SessionState& state() const { return controller_->state(); }
-
-  bool waitFor(const std::function<bool(const ui::SessionState&)>& predicate, int timeout_ms) {
-    if (predicate(state())) return true;
-    QEventLoop loop;
-    QTimer::singleShot(timeout_ms, &loop, &QEventLoop::quit);
-    connect(controller_.get(), &ui::StudioController::stateApplied, &loop, [&] {
-      if (predicate(state())) loop.quit();
-    });
-    loop.exec();
-    return predicate(state());
+    openStudio({std::move(options), {1300, 900}, pattern, body, false});
   }
 
   void runToTheEnd() {

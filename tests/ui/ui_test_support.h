@@ -15,6 +15,7 @@
 #include "engine/body/body_mesh.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/session/session.h"
+#include "ui/avatar_view.h"
 #include "ui/bundled_resources.h"
 #include "ui/opengl_format.h"
 #include "ui/pattern_layout.h"
@@ -147,6 +148,28 @@ inline Eigen::Vector3d point_inside_piece(const Garment& garment, const Eigen::M
     }
   }
   return best;
+}
+
+// A 480 × 400 avatar view, shown, in `view`: one OpenGL context (shaders compiled once) for all
+// of a test class's tests; fails the calling test when it cannot render.
+inline void show_avatar_view(std::unique_ptr<ui::AvatarView>& view) {
+  view = std::make_unique<ui::AvatarView>();
+  view->resize(480, 400);
+  view->show();
+  QVERIFY(QTest::qWaitForWindowExposed(view.get()));
+  QVERIFY2(view->renderingAvailable(), "OpenGL 3.3 core context or shaders unavailable");
+}
+
+// `garment` on its pattern sheet (sheet_positions at `depth`, centred at height 1, scaled) in front
+// of a sphere body, seen from the front and framed.
+inline void show_flat_before_sphere(ui::AvatarView& view, std::shared_ptr<const Garment> garment,
+                                    const Eigen::Vector3d& sphere_centre, double sphere_radius,
+                                    double depth, double scale) {
+  view.setBody(sphere_body(sphere_centre, sphere_radius));
+  view.setGarment(garment);
+  view.setGarmentPositions(sheet_positions(*garment, depth, 1.0, scale));
+  view.setOrbit(0, 0);
+  view.frameAll();
 }
 
 }  // namespace garment::test
