@@ -3,9 +3,9 @@
 // pairs, and the files are read back line by line. The sewn mesh has the unwelded count minus the
 // merges; every stitch and dart pair is one vertex of the sewn OBJ; its UVs per corner are the
 // unwelded OBJ's; the sewing-lines OBJ is the unwelded OBJ plus one `l` per pair. Through
-// `garment-init run --export`: the files are written beside -o, never onto an input, with no
-// temporary left; every GLB passes the Khronos glTF validator (scripts/validate_glb.sh; the test
-// skips, saying so, where it is not installed).
+// `garment-init run` and `batch --export`: the files are written beside -o, never onto an input,
+// with no temporary left; every GLB passes the Khronos glTF validator (scripts/validate_glb.sh; the
+// test skips, saying so, where it is not installed).
 
 #include <QtTest>
 
@@ -114,6 +114,15 @@ class SewnExportTest : public QObject {
   Q_OBJECT
 
  private slots:
+  // Short phases for the runs through garment-init: the files, not the arrangement, are tested.
+  void initTestCase() {
+    std::ofstream(folder_.filePath("fast.json").toStdString())
+        << R"({"align": {"first": 10, "revisit": 10}, "body_round": {"first": 2, "revisit": 2},
+              "body_final": {"first": 4, "revisit": 4}, "refine": {"first": 4, "revisit": 4},
+              "settle": {"first": 2, "revisit": 2}, "seed_iterations": 20,
+              "post_process_iterations": 5})";
+  }
+
   void sewn_obj_data() {
     QTest::addColumn<QString>("pattern");
     for (const char* name : kPatterns)
@@ -227,11 +236,6 @@ class SewnExportTest : public QObject {
   void run_exports() {
     const std::filesystem::path pattern = test::test_data("patterns/gc_0012_specification.json");
     const QString parameters = folder_.filePath("fast.json");
-    std::ofstream(parameters.toStdString())
-        << R"({"align": {"first": 10, "revisit": 10}, "body_round": {"first": 2, "revisit": 2},
-              "body_final": {"first": 4, "revisit": 4}, "refine": {"first": 4, "revisit": 4},
-              "settle": {"first": 2, "revisit": 2}, "seed_iterations": 20,
-              "post_process_iterations": 5})";
     const QString obj = folder_.filePath("skirt.obj"), glb = folder_.filePath("skirt.glb");
     QProcess process;
     process.start(GARMENT_INIT_EXE, {"run", QString::fromStdString(pattern.string()), "-o", obj,
@@ -259,6 +263,33 @@ class SewnExportTest : public QObject {
     const std::string sewn = read_text(folder_.filePath("skirt.sewn.obj").toStdString());
     QCOMPARE(static_cast<int>(keyword_lines(sewn, "v").size()), garment.vertex_count() - merges);
     QCOMPARE(keyword_lines(sewn, "vt"), keyword_lines(unwelded, "vt"));
+  }
+
+  // batch --export: each job's files beside its OBJ; an unknown kind refused before any job.
+  void batch_exports() {
+    QTemporaryDir folder;
+    const std::filesystem::path in = folder.filePath("in").toStdString();
+    std::filesystem::create_directories(in);
+    std::filesystem::copy_file(test::test_data("patterns/gc_0012_specification.json"),
+                               in / "skirt.json");
+    const QString out = folder.filePath("out");
+    QProcess process;
+    process.start(
+        GARMENT_INIT_EXE,
+        {"batch", QString::fromStdString(in.string()), "-o", out, "--jobs", "1", "--attempts", "1",
+         "--parameters", folder_.filePath("fast.json"), "--export", "sewn-obj,sewing-obj"});
+    QVERIFY(process.waitForFinished(300000));
+    QVERIFY2(process.exitCode() == 0, process.readAllStandardError().constData());
+    for (const char* name : {"skirt.obj", "skirt.sewn.obj", "skirt.sewing.obj"})
+      QVERIFY2(QFileInfo::exists(out + "/" + name), name);
+    QVERIFY(!QFileInfo::exists(out + "/skirt.sewn.glb"));
+
+    process.start(GARMENT_INIT_EXE, {"batch", QString::fromStdString(in.string()), "-o",
+                                     folder.filePath("out2"), "--export", "sewn-stl"});
+    QVERIFY(process.waitForFinished(60000));
+    QCOMPARE(process.exitCode(), 2);
+    QVERIFY(QString(process.readAllStandardError()).contains("'sewn-stl'"));
+    QVERIFY(!QFileInfo::exists(folder.filePath("out2")));
   }
 
   // An export that would land on an input is refused before any work, and nothing is written;
