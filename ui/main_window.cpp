@@ -161,6 +161,11 @@ void MainWindow::createActions() {
   session_actions_.export_obj->setShortcut(QKeySequence(tr("Ctrl+E")));
   session_actions_.export_glb = file_menu->addAction(tr("Export &GLB…"));
   session_actions_.export_report = file_menu->addAction(tr("Export quality &report…"));
+  QMenu* simulators = file_menu->addMenu(tr("Export for &simulators"));
+  session_actions_.export_sewn_obj = simulators->addAction(tr("&Sewn OBJ (one mesh, UVs)…"));
+  session_actions_.export_sewn_glb = simulators->addAction(tr("Sewn &GLB (one mesh)…"));
+  session_actions_.export_sewing_obj =
+      simulators->addAction(tr("OBJ with sewing &lines (Blender cloth)…"));
   file_menu->addSeparator();
   QAction* quit = file_menu->addAction(tr("&Quit"), this, &QWidget::close);
   quit->setShortcut(QKeySequence::Quit);
@@ -189,9 +194,11 @@ void MainWindow::createActions() {
   session_actions_.reset = arrange_menu->addAction(tr("R&eset"));
   session_actions_.reset->setShortcut(QKeySequence(tr("Ctrl+R")));
 
-  for (QAction* action : {session_actions_.run_pause, session_actions_.step, session_actions_.stop,
-                          session_actions_.reset, session_actions_.export_obj,
-                          session_actions_.export_glb, session_actions_.export_report})
+  for (QAction* action :
+       {session_actions_.run_pause, session_actions_.step, session_actions_.stop,
+        session_actions_.reset, session_actions_.export_obj, session_actions_.export_glb,
+        session_actions_.export_report, session_actions_.export_sewn_obj,
+        session_actions_.export_sewn_glb, session_actions_.export_sewing_obj})
     action->setEnabled(false);
 
   QToolBar* toolbar = addToolBar(tr("Main"));

@@ -51,6 +51,10 @@ struct SessionActions {
   QAction* export_obj = nullptr;
   QAction* export_glb = nullptr;
   QAction* export_report = nullptr;
+  // File › Export for simulators: sewn OBJ, sewn GLB, OBJ with sewing lines.
+  QAction* export_sewn_obj = nullptr;
+  QAction* export_sewn_glb = nullptr;
+  QAction* export_sewing_obj = nullptr;
 };
 
 class MainWindow : public QMainWindow {

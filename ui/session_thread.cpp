@@ -14,6 +14,7 @@
 #include "engine/io/garment_obj.h"
 #include "engine/io/glb_export.h"
 #include "engine/io/session_report.h"
+#include "engine/io/sewn_export.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
 
@@ -422,6 +423,16 @@ void SessionThread::exportFile(ExportKind kind, const QString& path) {
         const GarmentMetrics metrics = checker().measure(session_->positions());
         const QualityVerdict verdict = judge_garment(*scene.garment, metrics);
         write_file_atomically(file, session_report_json(*session_, metrics, verdict) + "\n");
+        break;
+      }
+      case ExportKind::SewnObj:
+      case ExportKind::SewnGlb:
+      case ExportKind::SewingObj: {
+        const SewnExport sewn = kind == ExportKind::SewnObj   ? SewnExport::kSewnObj
+                                : kind == ExportKind::SewnGlb ? SewnExport::kSewnGlb
+                                                              : SewnExport::kSewingObj;
+        write_file_atomically(file, format_sewn_export(sewn, *scene.garment, session_->positions(),
+                                                       scene.body.get(), file));
         break;
       }
     }

@@ -93,7 +93,8 @@ struct SessionState {
 class SessionThread : public QThread {
   Q_OBJECT
  public:
-  enum class ExportKind { Obj, Glb, Report };
+  // SewnObj, SewnGlb, SewingObj: the simulator exports of engine/io/sewn_export.h.
+  enum class ExportKind { Obj, Glb, Report, SewnObj, SewnGlb, SewingObj };
 
   explicit SessionThread(QObject* parent = nullptr);
   ~SessionThread() override;

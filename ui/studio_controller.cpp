@@ -61,6 +61,12 @@ StudioController::StudioController(MainWindow* window, SessionOptions options)
           [this] { askExport(SessionThread::ExportKind::Glb); });
   connect(actions.export_report, &QAction::triggered, this,
           [this] { askExport(SessionThread::ExportKind::Report); });
+  connect(actions.export_sewn_obj, &QAction::triggered, this,
+          [this] { askExport(SessionThread::ExportKind::SewnObj); });
+  connect(actions.export_sewn_glb, &QAction::triggered, this,
+          [this] { askExport(SessionThread::ExportKind::SewnGlb); });
+  connect(actions.export_sewing_obj, &QAction::triggered, this,
+          [this] { askExport(SessionThread::ExportKind::SewingObj); });
 
   arrange_next_ = new QAction(tr("Arrange selected &next"), this);
   arrange_next_->setShortcut(QKeySequence(tr("Ctrl+N")));
@@ -266,7 +272,9 @@ void StudioController::updateActions() {
   actions.step->setEnabled(ready && !state_.running && !state_.done);
   actions.stop->setEnabled(state_.has_session && (state_.running || state_.fixing));
   actions.reset->setEnabled(ready && state_.history.size() > 1);
-  for (QAction* action : {actions.export_obj, actions.export_glb, actions.export_report})
+  for (QAction* action :
+       {actions.export_obj, actions.export_glb, actions.export_report, actions.export_sewn_obj,
+        actions.export_sewn_glb, actions.export_sewing_obj})
     action->setEnabled(ready);
   arrange_next_->setEnabled(ready);
   seed_panel_->automaticButton()->setEnabled(ready);
@@ -568,6 +576,16 @@ void StudioController::askExport(SessionThread::ExportKind kind) {
       break;
     case SessionThread::ExportKind::Report:
       title = tr("Export report"), suffix = "_report.json", filter = tr("JSON (*.json)");
+      break;
+    case SessionThread::ExportKind::SewnObj:
+      title = tr("Export sewn OBJ"), suffix = ".sewn.obj", filter = tr("Wavefront OBJ (*.obj)");
+      break;
+    case SessionThread::ExportKind::SewnGlb:
+      title = tr("Export sewn GLB"), suffix = ".sewn.glb", filter = tr("glTF binary (*.glb)");
+      break;
+    case SessionThread::ExportKind::SewingObj:
+      title = tr("Export OBJ with sewing lines"), suffix = ".sewing.obj",
+      filter = tr("Wavefront OBJ (*.obj)");
       break;
   }
   const QString path =

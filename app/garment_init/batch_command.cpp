@@ -29,6 +29,7 @@
 #include "engine/core/error.h"
 #include "engine/core/input_file.h"
 #include "engine/core/text.h"
+#include "engine/io/sewn_export.h"
 #include "engine/pattern/pattern_files.h"
 #include "engine/recovery/recovery.h"
 #include "output_plan.h"
@@ -114,7 +115,8 @@ JobFiles job_files(const Job& job, const std::filesystem::path& output) {
 
 // Runs one job in a child process; returns its outcome (also written next to the output).
 Outcome run_job(const Job& job, const std::filesystem::path& output, double time_limit,
-                const std::string& parameters, const std::string& attempts) {
+                const std::string& parameters, const std::string& attempts,
+                const std::string& exports) {
   const JobFiles files = job_files(job, output);
   const std::filesystem::path& report = files.report;
   const std::filesystem::path& log = files.log;
@@ -136,6 +138,7 @@ Outcome run_job(const Job& job, const std::filesystem::path& output, double time
                                     attempts,
                                     "--quiet"};
   if (!parameters.empty()) words.insert(words.end(), {"--parameters", parameters});
+  if (!exports.empty()) words.insert(words.end(), {"--export", exports});
   std::vector<char*> argv;
   for (std::string& word : words)
     argv.push_back(word.data());
@@ -339,7 +342,7 @@ void write_summary(const std::vector<Outcome>& outcomes, const std::filesystem::
 int batch_command(const std::vector<std::string>& args) {
   const CommandLine line(args, {},
                          {"-o", "--jobs", "--body", "--bodies", "--time-limit", "--limit",
-                          "--parameters", "--attempts"});
+                          "--parameters", "--attempts", "--export"});
   const std::filesystem::path folder = line.only_positional("pattern folder");
   const auto output_value = line.value("-o");
   if (!output_value) throw UsageError("-o OUTDIR is required");
@@ -354,6 +357,14 @@ int batch_command(const std::vector<std::string>& args) {
   if (jobs < 1) throw UsageError("--jobs must be at least 1");
   const int attempts = line.integer("--attempts", RecoverySettings{}.attempts);
   if (attempts < 1) throw UsageError("--attempts must be 1 (a single pass) or more");
+  // Checked here, before any job: each job's `run` gets the list as it is.
+  const std::string export_list = line.value("--export").value_or("");
+  std::vector<SewnExport> exports;
+  if (line.has("--export")) try {
+      exports = parse_sewn_exports(export_list);
+    } catch (const std::invalid_argument& error) {
+      throw UsageError(std::string("--export: ") + error.what());
+    }
   if (!std::filesystem::is_directory(folder)) throw InputError(folder.string() + ": not a folder");
 
   const std::map<std::string, std::string> index = bodies_from_index(folder);
@@ -386,6 +397,8 @@ int batch_command(const std::vector<std::string>& args) {
     const JobFiles files = job_files(job, output);
     for (const std::filesystem::path& file : {files.obj, files.report, files.log, files.outcome})
       plan.output("-o", file);
+    for (SewnExport kind : exports)
+      plan.output("--export", sewn_export_path(files.obj, kind));
   }
   plan.output("-o", output / "summary.md");
   plan.output("-o", output / "summary.json");
@@ -409,7 +422,8 @@ int batch_command(const std::vector<std::string>& args) {
   const auto worker = [&] {
     for (std::size_t k = next++; k < pending.size(); k = next++) {
       const std::size_t i = pending[k];
-      outcomes[i] = run_job(all[i], output, time_limit, parameters, std::to_string(attempts));
+      outcomes[i] =
+          run_job(all[i], output, time_limit, parameters, std::to_string(attempts), export_list);
       const std::size_t count = ++finished;
       std::lock_guard<std::mutex> lock(print);
       if (terminal) {

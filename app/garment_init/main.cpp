@@ -26,7 +26,8 @@ const Command kCommands[] = {
      "object {pieces, stitches, darts, openings, vertices, triangles}.",
      garment::cli::inspect_command},
     {"run",
-     "run PATTERN.json [--body BODY.obj] -o OUT.obj [--glb OUT.glb] [--report R.json] "
+     "run PATTERN.json [--body BODY.obj] -o OUT.obj [--glb OUT.glb] [--export KINDS] [--report "
+     "R.json] "
      "[--seed-pieces a,b "
      "--seed-location NAME] "
      "[--order p1,p2,...] [--threads N] [--edge-length M] [--parameters P.json] [--snapshots DIR] "
@@ -34,10 +35,15 @@ const Command kCommands[] = {
      "Arranges the pattern on the body (default: the bundled mean body) and writes the garment "
      "OBJ\n"
      "(one group per panel, vt = pattern coordinates); --glb also writes the garment and the body\n"
-     "as glTF 2.0 binary for viewers. Seeds with the classifier unless "
-     "--seed-pieces\n"
-     "and --seed-location (one of the 15 body locations, see `body`) are given; --order fixes the\n"
-     "arrangement order of the named pieces. --report writes the order, batches, revisits, "
+     "as glTF 2.0 binary for viewers. --export sewn-obj,sewn-glb,sewing-obj (any of them) also\n"
+     "writes files for cloth simulators next to OUT.obj: OUT.sewn.obj (seam and dart pairs merged\n"
+     "into one mesh, pattern UVs per corner), OUT.sewn.glb (the same mesh and the body, no UVs) "
+     "and\n"
+     "OUT.sewing.obj (the unwelded pieces plus one `l i j` line per sewing pair: Blender's cloth\n"
+     "sewing springs); scripts/validate_glb.sh checks a GLB with the Khronos glTF validator.\n"
+     "Seeds with the classifier unless --seed-pieces and --seed-location (one of the 15 body\n"
+     "locations, see `body`) are given; --order fixes the arrangement order of the named pieces.\n"
+     "--report writes the order, batches, revisits, "
      "per-phase\n"
      "iterations and times and the quality metrics as JSON. --snapshots writes the garment after "
      "every\n"
@@ -55,7 +61,7 @@ const Command kCommands[] = {
      garment::cli::run_command},
     {"batch",
      "batch DIR -o OUTDIR [--jobs N] [--body BODY.obj] [--bodies DIR] [--time-limit S] [--limit N] "
-     "[--parameters P.json] [--attempts N]",
+     "[--parameters P.json] [--attempts N] [--export KINDS]",
      "Runs `run` on every pattern in DIR, each in its own process with one thread and a time "
      "limit\n"
      "(default 300 s), --jobs at a time (default: the number of cores). Each pattern goes on its "
@@ -63,10 +69,10 @@ const Command kCommands[] = {
      "body when DIR has a GarmentCode index.json (body_obj, looked up in --bodies, default\n"
      "DIR/../../bodies), else on --body (default: the bundled body). Writes per pattern "
      "OUTDIR/NAME.obj,\n"
-     ".report.json, .log and .outcome.json; patterns with an outcome are skipped, so an "
-     "interrupted\n"
-     "batch resumes. OUTDIR may not be DIR or lie inside it; jobs die with the batch. Prints a\n"
-     "progress bar on a terminal and writes summary.md and summary.json: success\n"
+     ".report.json, .log and .outcome.json (with --export, as in `run`: NAME.sewn.obj, ...);\n"
+     "patterns with an outcome are skipped, so an interrupted batch resumes. OUTDIR may not be\n"
+     "DIR or lie inside it; jobs die with the batch. Prints a progress bar on a terminal and\n"
+     "writes summary.md and summary.json: success\n"
      "rate (clean at the first pass, recovered, failed, designs that cannot fit), failures by\n"
      "class, time per garment (median, p95, max).",
      garment::cli::batch_command},

@@ -17,6 +17,7 @@
 #include "engine/io/glb_export.h"
 #include "engine/io/parameters_json.h"
 #include "engine/io/session_report.h"
+#include "engine/io/sewn_export.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
 #include "engine/recovery/recovery.h"
@@ -63,8 +64,8 @@ std::vector<int> piece_indices(const Garment& garment, const std::vector<std::st
 int run_command(const std::vector<std::string>& args) {
   const CommandLine line(
       args, {"--quiet"},
-      {"--body", "-o", "--glb", "--report", "--seed-pieces", "--seed-location", "--order",
-       "--threads", "--edge-length", "--snapshots", "--parameters", "--attempts"});
+      {"--body", "-o", "--glb", "--export", "--report", "--seed-pieces", "--seed-location",
+       "--order", "--threads", "--edge-length", "--snapshots", "--parameters", "--attempts"});
   const std::string pattern_path = line.only_positional("pattern file");
   const auto output = line.value("-o");
   if (!output) throw UsageError("-o OUT.obj is required");
@@ -90,6 +91,12 @@ int run_command(const std::vector<std::string>& args) {
   const auto report = line.value("--report");
   const auto snapshots = line.value("--snapshots");
   const auto parameters = line.value("--parameters");
+  std::vector<SewnExport> exports;
+  if (const auto list = line.value("--export")) try {
+      exports = parse_sewn_exports(*list);
+    } catch (const std::invalid_argument& error) {
+      throw UsageError(std::string("--export: ") + error.what());
+    }
 
   OutputPlan plan;
   plan.input("the pattern", pattern_path);
@@ -99,6 +106,8 @@ int run_command(const std::vector<std::string>& args) {
   if (parameters) plan.input("--parameters", *parameters);
   plan.output("-o", *output);
   if (glb) plan.output("--glb", *glb);
+  for (SewnExport kind : exports)
+    plan.output(std::string("--export ") + sewn_export_name(kind), sewn_export_path(*output, kind));
   if (report) plan.output("--report", *report);
   if (snapshots) plan.output_folder("--snapshots", *snapshots);
   plan.check();
@@ -149,6 +158,11 @@ int run_command(const std::vector<std::string>& args) {
     outputs.stage(
         *glb, format_glb(garment_glb_meshes(chosen_garment, chosen.positions(), scene->body.get()),
                          *glb));
+  for (SewnExport kind : exports) {
+    const std::filesystem::path path = sewn_export_path(*output, kind);
+    outputs.stage(path, format_sewn_export(kind, chosen_garment, chosen.positions(),
+                                           scene->body.get(), path));
+  }
   if (report)
     outputs.stage(*report,
                   session_report_json(chosen, recovered.metrics, verdict, &recovered) + "\n");

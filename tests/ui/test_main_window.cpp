@@ -324,8 +324,10 @@ class MainWindowTest : public QObject {
 
   void sessionActionsWaitForASession() {
     const ui::SessionActions& actions = window_->sessionActions();
-    for (QAction* action : {actions.run_pause, actions.step, actions.stop, actions.reset,
-                            actions.export_obj, actions.export_glb, actions.export_report}) {
+    for (QAction* action :
+         {actions.run_pause, actions.step, actions.stop, actions.reset, actions.export_obj,
+          actions.export_glb, actions.export_report, actions.export_sewn_obj,
+          actions.export_sewn_glb, actions.export_sewing_obj}) {
       QVERIFY(action);
       QVERIFY2(!action->isEnabled(), qPrintable(action->text()));
     }

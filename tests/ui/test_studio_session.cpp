@@ -26,6 +26,7 @@
 #include <set>
 
 #include "engine/io/garment_obj.h"
+#include "engine/io/sewn_export.h"
 #include "tests/support/test_environment.h"
 #include "tests/ui/studio_harness.h"
 #include "tests/ui/ui_test_support.h"
@@ -408,7 +409,13 @@ class StudioSessionTest : public QObject, test::StudioHarness {
     controller_->exportTo(ui::SessionThread::ExportKind::Obj, obj);
     controller_->exportTo(ui::SessionThread::ExportKind::Glb, glb);
     controller_->exportTo(ui::SessionThread::ExportKind::Report, report);
-    QVERIFY(QTest::qWaitFor([&] { return done.count() == 3; }, 60000));
+    const QString sewn_obj = directory.filePath("demo.sewn.obj"),
+                  sewn_glb = directory.filePath("demo.sewn.glb"),
+                  sewing_obj = directory.filePath("demo.sewing.obj");
+    controller_->exportTo(ui::SessionThread::ExportKind::SewnObj, sewn_obj);
+    controller_->exportTo(ui::SessionThread::ExportKind::SewnGlb, sewn_glb);
+    controller_->exportTo(ui::SessionThread::ExportKind::SewingObj, sewing_obj);
+    QVERIFY(QTest::qWaitFor([&] { return done.count() == 6; }, 60000));
     for (const QList<QVariant>& args : done)
       QVERIFY2(args.at(1).toString().isEmpty(), qPrintable(args.at(1).toString()));
     const Eigen::MatrixX3d read = read_garment_obj(obj.toStdString(), *window_->garment());
@@ -416,6 +423,24 @@ class StudioSessionTest : public QObject, test::StudioHarness {
     QFile glb_file(glb);
     QVERIFY(glb_file.open(QIODevice::ReadOnly));
     QCOMPARE(glb_file.read(4), QByteArray("glTF"));
+    // The simulator exports, counted (their content is checked in tests/io/test_sewn_export.cpp):
+    // one v per sewn vertex, one l per stitch or dart pair.
+    const Garment& garment = *window_->garment();
+    const auto count_lines = [](const QString& path, const QByteArray& keyword) {
+      QFile file(path);
+      int count = 0;
+      if (file.open(QIODevice::ReadOnly))
+        for (const QByteArray& line : file.readAll().split('\n'))
+          count += line.startsWith(keyword);
+      return count;
+    };
+    QCOMPARE(count_lines(sewn_obj, "v "),
+             sew_garment(garment, *controller_->lastUpdate().positions).positions.rows());
+    QCOMPARE(count_lines(sewing_obj, "l "),
+             garment.sewing_pairs.rows() + garment.dart_pairs.rows());
+    QFile sewn_glb_file(sewn_glb);
+    QVERIFY(sewn_glb_file.open(QIODevice::ReadOnly));
+    QCOMPARE(sewn_glb_file.read(4), QByteArray("glTF"));
     QFile report_file(report);
     QVERIFY(report_file.open(QIODevice::ReadOnly));
     const QJsonObject json = QJsonDocument::fromJson(report_file.readAll()).object();
