@@ -86,6 +86,13 @@ StudioController::StudioController(MainWindow* window, SessionOptions options)
   });
   connect(window_, &MainWindow::pieceSelectionChanged, this, &StudioController::updateSeedChoice);
   connect(window_, &MainWindow::bodyLocationSelected, this, &StudioController::updateSeedChoice);
+  // Pieces dropped on a marker: the same as choosing both and "Seed here and run".
+  connect(window_, &MainWindow::seedDropped, this, [this] {
+    if (seed_panel_->seedButton()->isEnabled())
+      seedFromChoice();
+    else
+      window_->statusBar()->showMessage(tr("the session is not ready to seed yet"), 4000);
+  });
 
   history_list_ = new QListWidget(window_);
   history_list_->setObjectName("history_list");
