@@ -1,6 +1,8 @@
 #include "ui/avatar_view.h"
 
 #include <QApplication>
+#include <QDropEvent>
+#include <QLineF>
 #include <QMouseEvent>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
@@ -10,9 +12,11 @@
 #include <QWheelEvent>
 #include <QtMath>
 #include <cmath>
+#include <limits>
 
 #include "engine/core/mesh_geometry.h"
 #include "ui/garment_diagnostics_worker.h"
+#include "ui/piece_drag.h"
 
 namespace garment::ui {
 
@@ -137,6 +141,9 @@ AvatarView::AvatarView(QWidget* parent) : QOpenGLWidget(parent) {
             setDiagnostics(std::move(diagnostics));
           });
   legend_ = new ColourLegend(this);
+  // Hovering a marker shows that it can be clicked, and which location it is.
+  setMouseTracking(true);
+  setAcceptDrops(true);
 }
 
 QColor AvatarView::strainColour(double strain) {
@@ -847,6 +854,58 @@ QPointF AvatarView::projectToView(const Eigen::Vector3d& point) const {
   return QPointF((x + 1.0) * 0.5 * width(), (1.0 - y) * 0.5 * height());
 }
 
+int AvatarView::locationAt(const QPointF& position) const {
+  if (!markers_shown_) return -1;
+  const QMatrix4x4 transform = projectionMatrix() * viewMatrix();
+  int best = -1;
+  float best_depth = std::numeric_limits<float>::infinity();
+  for (int i = 0; i < static_cast<int>(locations_.size()); ++i) {
+    const Eigen::Vector3d& centre = locations_[i].centre;
+    const QVector4D clip =
+        transform * QVector4D(static_cast<float>(centre.x()), static_cast<float>(centre.y()),
+                              static_cast<float>(centre.z()), 1.0f);
+    if (clip.w() <= 0.0f) continue;  // behind the camera
+    if (QLineF(projectToView(centre), position).length() > kMarkerPickPixels) continue;
+    if (clip.z() / clip.w() < best_depth) {
+      best_depth = clip.z() / clip.w();
+      best = i;
+    }
+  }
+  return best;
+}
+
+bool AvatarView::dropPieces(const QMimeData* data, const QPointF& position) {
+  const QList<int> pieces = pieces_from_mime_data(data);
+  const int location = locationAt(position);
+  if (pieces.isEmpty() || location < 0) return false;
+  Q_EMIT piecesDroppedOnLocation(pieces, location);
+  return true;
+}
+
+void AvatarView::dragEnterEvent(QDragEnterEvent* event) {
+  // Pieces are accepted anywhere in the view (the cursor says where a drop would seed); anything
+  // else, such as files, is left to the main window.
+  if (pieces_from_mime_data(event->mimeData()).isEmpty()) {
+    event->ignore();
+    return;
+  }
+  event->acceptProposedAction();
+}
+
+void AvatarView::dragMoveEvent(QDragMoveEvent* event) {
+  if (locationAt(event->position()) >= 0 && !pieces_from_mime_data(event->mimeData()).isEmpty())
+    event->acceptProposedAction();
+  else
+    event->ignore();
+}
+
+void AvatarView::dropEvent(QDropEvent* event) {
+  if (dropPieces(event->mimeData(), event->position()))
+    event->acceptProposedAction();
+  else
+    event->ignore();
+}
+
 void AvatarView::setOrbit(double yaw_degrees, double pitch_degrees) {
   yaw_degrees_ = static_cast<float>(yaw_degrees);
   pitch_degrees_ = std::clamp(static_cast<float>(pitch_degrees), -89.0f, 89.0f);
@@ -929,6 +988,12 @@ void AvatarView::mousePressEvent(QMouseEvent* event) {
 
 void AvatarView::mouseMoveEvent(QMouseEvent* event) {
   const QPoint position = event->position().toPoint();
+  if (event->buttons() == Qt::NoButton) {
+    const int location = locationAt(event->position());
+    setCursor(location >= 0 ? Qt::PointingHandCursor : Qt::ArrowCursor);
+    setToolTip(location >= 0 ? QString::fromStdString(locations_[location].name) : QString());
+    return;
+  }
   const QPoint delta = position - last_position_;
   last_position_ = position;
   if ((position - press_position_).manhattanLength() >= QApplication::startDragDistance())
@@ -954,6 +1019,11 @@ void AvatarView::mouseMoveEvent(QMouseEvent* event) {
 
 void AvatarView::mouseReleaseEvent(QMouseEvent* event) {
   if (event->button() != Qt::LeftButton || dragged_) return;
+  // A marker is drawn over the body and the garment: clicking it chooses its location.
+  if (const int location = locationAt(event->position()); location >= 0) {
+    Q_EMIT locationClicked(location);
+    return;
+  }
   const int piece = pieceAt(event->position().toPoint());
   QList<int> selection;
   if (event->modifiers() & (Qt::ControlModifier | Qt::ShiftModifier)) {

@@ -4,7 +4,9 @@
 // neighbours), and the body locations as markers. Left drag orbits, middle or right drag or
 // Shift+left drag pans, the wheel zooms towards the point under the cursor, frameAll() frames body
 // and garment and frameSelected() the selected pieces; a click picks a piece (Ctrl or Shift adds to
-// the selection) through an id buffer, so what is picked is what is visible.
+// the selection) through an id buffer, so what is picked is what is visible. A click on a body
+// location marker chooses that location instead, and pieces dragged from the pattern view (
+// piece_drag.h) onto a marker ask for the manual seed there.
 //
 // Diagnostics drawn over the garment, each an Overlay toggled on its own, with a legend in the
 // corner for those that are on: the strain map, vertices inside the body and edges crossing it or
@@ -36,6 +38,7 @@
 #include "ui/colour_legend.h"
 #include "ui/piece_state.h"
 
+class QMimeData;
 class QOpenGLFramebufferObject;
 class QOpenGLShaderProgram;
 
@@ -140,6 +143,13 @@ class AvatarView : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   QPointF projectToView(const Eigen::Vector3d& point) const;
   // The piece visible at a widget position, -1 for the body or the background.
   int pieceAt(const QPoint& position);
+  // The shown marker within kMarkerPickPixels of a widget position, the nearest the camera when
+  // several are (a front marker over its back twin); -1 for none.
+  int locationAt(const QPointF& position) const;
+  static constexpr double kMarkerPickPixels = 12.0;
+  // What a drop does: pieces (piece_drag.h) dropped on a marker emit piecesDroppedOnLocation; true
+  // when they were. dropEvent calls it; tests may call it with the drop's data and position.
+  bool dropPieces(const QMimeData* data, const QPointF& position);
   // How many garment states were drawn (one per paint that uploaded new positions): the live
   // frame rate's numerator.
   int garmentFrameCount() const { return garment_frames_; }
@@ -154,6 +164,10 @@ class AvatarView : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
  signals:
   // The user changed the selection by picking; not emitted by setSelectedPieces.
   void pieceSelectionChanged(const QList<int>& pieces);
+  // The user clicked a body location's marker.
+  void locationClicked(int location);
+  // The user dropped pieces dragged from the pattern view on a body location's marker.
+  void piecesDroppedOnLocation(const QList<int>& pieces, int location);
 
  protected:
   void initializeGL() override;
@@ -163,6 +177,9 @@ class AvatarView : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   void mouseMoveEvent(QMouseEvent* event) override;
   void mouseReleaseEvent(QMouseEvent* event) override;
   void wheelEvent(QWheelEvent* event) override;
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dragMoveEvent(QDragMoveEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
 
  private:
   struct GpuMesh {

@@ -23,6 +23,7 @@
 #include "ui/arrangement_order_list.h"
 #include "ui/avatar_view.h"
 #include "ui/bundled_resources.h"
+#include "ui/help_dialogs.h"
 #include "ui/pattern_view.h"
 #include "ui/quality_panel.h"
 #include "ui/recent_files.h"
@@ -86,6 +87,16 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     pattern_view_->setSelectedPieces(p);
     Q_EMIT pieceSelectionChanged(p);
   });
+  // A marker clicked is the location chosen in the list (which highlights it and tells others).
+  connect(avatar_view_, &AvatarView::locationClicked, location_list_,
+          [this](int location) { location_list_->setCurrentRow(location); });
+  connect(avatar_view_, &AvatarView::piecesDroppedOnLocation, this,
+          [this](const QList<int>& pieces, int location) {
+            selectPieces(pieces);
+            Q_EMIT pieceSelectionChanged(selectedPieces());
+            location_list_->setCurrentRow(location);
+            Q_EMIT seedDropped(selectedPieces(), location);
+          });
 
   error_presenter_ = [this](const QString& title, const QString& message) {
     QMessageBox::critical(this, title, message);
@@ -213,6 +224,34 @@ void MainWindow::createActions() {
   toolbar->addAction(session_actions_.reset);
   toolbar->addSeparator();
   toolbar->addAction(frame_all);
+  createHelpMenu();
+}
+
+void MainWindow::createHelpMenu() {
+  QMenu* help = menuBar()->addMenu(tr("&Help"));
+  help->addAction(tr("&Keyboard shortcuts"), this, &MainWindow::showShortcuts)
+      ->setShortcut(QKeySequence::HelpContents);
+  help->addAction(tr("&About garment-studio"), this, &MainWindow::showAbout);
+}
+
+QDialog* MainWindow::showShortcuts() {
+  QDialog* dialog = create_shortcuts_dialog(this);
+  dialog->setAttribute(Qt::WA_DeleteOnClose);
+  dialog->show();
+  return dialog;
+}
+
+QDialog* MainWindow::showAbout() {
+  QDialog* dialog = create_about_dialog(this);
+  dialog->setAttribute(Qt::WA_DeleteOnClose);
+  dialog->show();
+  return dialog;
+}
+
+void MainWindow::showEvent(QShowEvent* event) {
+  // By now the session integration has added its actions too.
+  show_shortcuts_in_tooltips(window_actions(this));
+  QMainWindow::showEvent(event);
 }
 
 void MainWindow::rebuildRecentFilesMenu() {

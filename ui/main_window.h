@@ -28,6 +28,7 @@
 #include "ui/piece_state.h"
 
 class QAction;
+class QDialog;
 class QDockWidget;
 class QToolBar;
 class QListWidget;
@@ -115,14 +116,20 @@ class MainWindow : public QMainWindow {
   const SessionActions& sessionActions() const { return session_actions_; }
   const AvatarViewActions& avatarViewActions() const { return avatar_view_actions_; }
   QMenu* recentFilesMenu() const { return recent_menu_; }
+  // Help menu: the dialogs it opens (non-modal, deleted on close).
+  QDialog* showShortcuts();
+  QDialog* showAbout();
 
  signals:
   void garmentOpened(std::shared_ptr<const garment::Garment> garment);
   void bodyOpened(std::shared_ptr<const garment::Body> body);
   // The user selected pieces in either view, or chose a failure in the Quality panel.
   void pieceSelectionChanged(const QList<int>& pieces);
-  // The user chose a body location in the list (-1: none).
+  // The user chose a body location in the list or by clicking its marker (-1: none).
   void bodyLocationSelected(int location);
+  // The user dropped pieces on a location's marker: both are chosen (as selectPieces and the
+  // location list show) and the manual seed there is asked for.
+  void seedDropped(const QList<int>& pieces, int location);
   // The user reordered the arrangement order list.
   void arrangementOrderChanged(const QList<int>& order);
 
@@ -130,10 +137,12 @@ class MainWindow : public QMainWindow {
   void closeEvent(QCloseEvent* event) override;
   void dragEnterEvent(QDragEnterEvent* event) override;
   void dropEvent(QDropEvent* event) override;
+  void showEvent(QShowEvent* event) override;
 
  private:
   void createActions();
   void createDocks();
+  void createHelpMenu();
   void rebuildRecentFilesMenu();
   void openRecent(const QString& path);
   bool openPatternFile(const QString& path, bool remember);

@@ -47,19 +47,32 @@ ManualSeedPanel::ManualSeedPanel(QWidget* parent) : QWidget(parent) {
 
 void ManualSeedPanel::setAutomaticSeed(const QString& text) {
   automatic_->setText(text);
+  reserveTextHeight();
 }
 
 void ManualSeedPanel::setSeedInUse(const QString& text) {
   in_use_->setText(text);
+  reserveTextHeight();
 }
 
 void ManualSeedPanel::setChoice(const QStringList& pieces, const QString& location) {
   const QString piece_text =
       pieces.isEmpty() ? tr("select pieces in the pattern view") : pieces.join(", ");
   const QString location_text =
-      location.isEmpty() ? tr("choose a body location in the list") : location;
+      location.isEmpty() ? tr("choose a body location (list or marker)") : location;
   choice_->setText(tr("%1 → %2").arg(piece_text, location_text));
   seed_button_->setEnabled(!pieces.isEmpty() && !location.isEmpty());
+  reserveTextHeight();
+}
+
+void ManualSeedPanel::resizeEvent(QResizeEvent* event) {
+  QWidget::resizeEvent(event);
+  reserveTextHeight();
+}
+
+void ManualSeedPanel::reserveTextHeight() {
+  const int needed = layout()->heightForWidth(width());
+  if (needed > 0 && needed != minimumHeight()) setMinimumHeight(needed);
 }
 
 QString ManualSeedPanel::automaticSeedText() const {

@@ -30,7 +30,14 @@ class ManualSeedPanel : public QWidget {
   void seedRequested();           // the chosen pieces at the chosen location, then run
   void automaticSeedRequested();  // back to the classifier's seed, then run
 
+ protected:
+  void resizeEvent(QResizeEvent* event) override;
+
  private:
+  // Asks the dock for the height the wrapped texts need at the current width: the main window's
+  // dock layout does not ask for it (no height-for-width), and squeezed them to one clipped line.
+  void reserveTextHeight();
+
   QLabel* automatic_ = nullptr;
   QLabel* in_use_ = nullptr;
   QLabel* choice_ = nullptr;

@@ -1,6 +1,7 @@
 #include "ui/pattern_view.h"
 
 #include <QApplication>
+#include <QDrag>
 #include <QGraphicsPolygonItem>
 #include <QGraphicsScene>
 #include <QGraphicsSimpleTextItem>
@@ -13,12 +14,14 @@
 
 #include "ui/colour_legend.h"
 #include "ui/pattern_layout.h"
+#include "ui/piece_drag.h"
 
 namespace garment::ui {
 
 namespace {
 
-constexpr int kPieceKey = 0;  // QGraphicsItem::data key holding the piece index
+constexpr int kPieceKey = 0;                  // QGraphicsItem::data key holding the piece index
+constexpr std::size_t kLabelCandidates = 64;  // places tried per label
 
 // Distinct colours for the stitches of the selection.
 const QColor kStitchColours[] = {QColor(31, 119, 180),  QColor(214, 39, 40),  QColor(44, 160, 44),
@@ -65,6 +68,7 @@ void PatternView::setGarment(std::shared_ptr<const Garment> garment) {
   scene()->clear();
   piece_items_.clear();
   label_items_.clear();
+  label_candidates_.clear();
   pieces_rect_ = QRectF();
   sewing_items_.clear();
   sewing_highlight_count_ = 0;
@@ -90,6 +94,23 @@ void PatternView::setGarment(std::shared_ptr<const Garment> garment) {
     const QRectF text = label->boundingRect();
     label->setTransform(QTransform::fromTranslate(-text.width() / 2, -text.height() / 2));
     label->setPos(labelAnchor(p, outline.boundingRect().center()));
+    // The centroids of the piece's triangles, nearest the outline's centre first, at most
+    // kLabelCandidates of them spread over the piece.
+    std::vector<QPointF> centroids;
+    for (int t = piece.first_triangle; t < piece.first_triangle + piece.triangle_count; ++t)
+      centroids.push_back((scenePoint(garment_->triangles(t, 0)) +
+                           scenePoint(garment_->triangles(t, 1)) +
+                           scenePoint(garment_->triangles(t, 2))) /
+                          3.0);
+    const QPointF centre = label->pos();
+    std::sort(centroids.begin(), centroids.end(), [&](const QPointF& a, const QPointF& b) {
+      return QLineF(a, centre).length() < QLineF(b, centre).length();
+    });
+    std::vector<QPointF> candidates;
+    const std::size_t stride = std::max<std::size_t>(1, centroids.size() / kLabelCandidates);
+    for (std::size_t i = 0; i < centroids.size(); i += stride)
+      candidates.push_back(centroids[i]);
+    label_candidates_.push_back(std::move(candidates));
     piece_items_.push_back(item);
     label_items_.push_back(label);
     updatePieceAppearance(p);
@@ -237,31 +258,106 @@ QPoint PatternView::pieceLabelPosition(int piece) const {
   return mapFromScene(label_items_[piece]->pos());
 }
 
+QRectF PatternView::labelRect(int piece) const {
+  if (piece < 0 || piece >= static_cast<int>(label_items_.size()) ||
+      !label_items_[piece]->isVisible())
+    return {};
+  // The label ignores the view's scale: its text measures pixels, centred on its position.
+  const QSizeF size = label_items_[piece]->boundingRect().size();
+  const QPointF centre = viewportTransform().map(label_items_[piece]->pos());
+  return QRectF(centre - QPointF(size.width() / 2, size.height() / 2), size);
+}
+
+void PatternView::layoutLabels() {
+  std::vector<int> order(label_items_.size());
+  for (std::size_t p = 0; p < order.size(); ++p)
+    order[p] = static_cast<int>(p);
+  std::stable_sort(order.begin(), order.end(), [this](int a, int b) {
+    return garment_->pieces[a].triangle_count > garment_->pieces[b].triangle_count;
+  });
+  const QRectF view(viewport()->rect());
+  std::vector<QRectF> taken;
+  if (legend_->isVisible())
+    taken.push_back(QRectF(legend_->geometry()).translated(-QPointF(viewport()->pos())));
+  for (int p : order) {
+    QGraphicsSimpleTextItem* label = label_items_[p];
+    const QSizeF size = label->boundingRect().size();
+    bool placed = false;
+    for (const QPointF& candidate : label_candidates_[p]) {
+      const QPointF centre = viewportTransform().map(candidate);
+      const QRectF rect(centre - QPointF(size.width() / 2, size.height() / 2), size);
+      if (!view.contains(rect) ||
+          std::any_of(taken.begin(), taken.end(),
+                      [&rect](const QRectF& other) { return other.intersects(rect); }))
+        continue;
+      label->setPos(candidate);
+      taken.push_back(rect);
+      placed = true;
+      break;
+    }
+    label->setVisible(placed);
+  }
+}
+
 void PatternView::frameAll() {
   if (piece_items_.empty()) return;
   fitInView(pieces_rect_.adjusted(-0.05, -0.05, 0.05, 0.05), Qt::KeepAspectRatio);
   framed_by_user_ = false;
+  layoutLabels();
 }
 
 void PatternView::resizeEvent(QResizeEvent* event) {
   QGraphicsView::resizeEvent(event);
   if (!framed_by_user_) frameAll();
+  layoutLabels();
+}
+
+void PatternView::scrollContentsBy(int dx, int dy) {
+  QGraphicsView::scrollContentsBy(dx, dy);
+  layoutLabels();
 }
 
 void PatternView::wheelEvent(QWheelEvent* event) {
   const double factor = std::pow(1.0015, event->angleDelta().y());
   scale(factor, factor);
   framed_by_user_ = true;
+  layoutLabels();
   event->accept();
 }
 
 void PatternView::mousePressEvent(QMouseEvent* event) {
   press_position_ = event->position().toPoint();
+  // On a selected piece the left button drags the selection, not the sheet.
+  piece_drag_armed_ = event->button() == Qt::LeftButton && event->modifiers() == Qt::NoModifier &&
+                      selected_.contains(pieceAt(press_position_));
+  if (piece_drag_armed_) {
+    event->accept();
+    return;
+  }
   QGraphicsView::mousePressEvent(event);
 }
 
+void PatternView::mouseMoveEvent(QMouseEvent* event) {
+  if (!piece_drag_armed_) {
+    QGraphicsView::mouseMoveEvent(event);
+    return;
+  }
+  if ((event->position().toPoint() - press_position_).manhattanLength() <
+      QApplication::startDragDistance())
+    return;
+  piece_drag_armed_ = false;
+  auto* drag = new QDrag(this);
+  drag->setMimeData(piece_mime_data(selected_));
+  drag->exec(Qt::CopyAction);
+}
+
 void PatternView::mouseReleaseEvent(QMouseEvent* event) {
-  QGraphicsView::mouseReleaseEvent(event);
+  if (piece_drag_armed_) {
+    // A click on a selected piece (moving would have dragged it): it selects as any click does.
+    piece_drag_armed_ = false;
+  } else {
+    QGraphicsView::mouseReleaseEvent(event);
+  }
   if (event->button() != Qt::LeftButton) return;
   const QPoint position = event->position().toPoint();
   if ((position - press_position_).manhattanLength() >= QApplication::startDragDistance()) {

@@ -3,7 +3,11 @@
 // with the colour of its arrangement state and labelled with its name. The sewing relationships of
 // the selected pieces are drawn on top: both edges of each stitch highlighted in one colour and a
 // few sewing pairs joined by dashed lines. Wheel zooms at the cursor, dragging pans, a click
-// selects (Ctrl or Shift adds to the selection). A legend in the corner explains the fill colours.
+// selects (Ctrl or Shift adds to the selection); dragging a selected piece drags the selection
+// (piece_drag.h), to drop on a body location marker in the 3D view. A legend in the corner explains
+// the fill colours. Labels are placed in the view, inside their pieces, so that none overlaps
+// another or the legend or runs off the view; a label with no such place is hidden (the piece's
+// tooltip still names it).
 
 #include <QGraphicsView>
 #include <QList>
@@ -38,6 +42,8 @@ class PatternView : public QGraphicsView {
   int pieceAt(const QPoint& view_position) const;  // -1 outside every piece
   // Where a piece's label sits, in view coordinates: a point inside the piece.
   QPoint pieceLabelPosition(int piece) const;
+  // The rectangle a piece's label covers, in view coordinates; empty when the label is hidden.
+  QRectF labelRect(int piece) const;
   // Stitches drawn for the current selection.
   int sewingHighlightCount() const { return sewing_highlight_count_; }
   ColourLegend* legend() const { return legend_; }
@@ -52,12 +58,17 @@ class PatternView : public QGraphicsView {
  protected:
   void wheelEvent(QWheelEvent* event) override;
   void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
   void mouseReleaseEvent(QMouseEvent* event) override;
   void resizeEvent(QResizeEvent* event) override;
+  void scrollContentsBy(int dx, int dy) override;
 
  private:
   QPointF scenePoint(int vertex) const;  // a garment vertex on the sheet
   QPointF labelAnchor(int piece, const QPointF& near) const;
+  // Places every label at the first of its piece's candidate points where it overlaps nothing
+  // placed before and stays in the view (large pieces first: they have the most room to give).
+  void layoutLabels();
   void updatePieceAppearance(int piece);
   void rebuildSewingHighlights();
 
@@ -65,6 +76,8 @@ class PatternView : public QGraphicsView {
   std::vector<Eigen::Vector2d> offsets_;
   std::vector<QGraphicsPolygonItem*> piece_items_;
   std::vector<QGraphicsSimpleTextItem*> label_items_;
+  // Per piece, scene points inside it where its label may sit, best first.
+  std::vector<std::vector<QPointF>> label_candidates_;
   QRectF pieces_rect_;  // scene rectangle of all outlines
   std::vector<PieceState> states_;
   QList<int> selected_;
@@ -72,7 +85,8 @@ class PatternView : public QGraphicsView {
   int sewing_highlight_count_ = 0;
   ColourLegend* legend_ = nullptr;
   QPoint press_position_;
-  bool framed_by_user_ = false;  // zoomed or panned: resizing keeps the user's view
+  bool piece_drag_armed_ = false;  // pressed on a selected piece: moving drags the selection
+  bool framed_by_user_ = false;    // zoomed or panned: resizing keeps the user's view
 };
 
 }  // namespace garment::ui

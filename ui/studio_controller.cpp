@@ -92,6 +92,13 @@ StudioController::StudioController(MainWindow* window, SessionOptions options)
   });
   connect(window_, &MainWindow::pieceSelectionChanged, this, &StudioController::updateSeedChoice);
   connect(window_, &MainWindow::bodyLocationSelected, this, &StudioController::updateSeedChoice);
+  // Pieces dropped on a marker: the same as choosing both and "Seed here and run".
+  connect(window_, &MainWindow::seedDropped, this, [this] {
+    if (seed_panel_->seedButton()->isEnabled())
+      seedFromChoice();
+    else
+      window_->statusBar()->showMessage(tr("the session is not ready to seed yet"), 4000);
+  });
 
   history_list_ = new QListWidget(window_);
   history_list_->setObjectName("history_list");
@@ -222,8 +229,14 @@ void StudioController::applyState(const SessionState& state) {
   // topology; the pattern view keeps the pattern's pieces, which are the same.
   const std::shared_ptr<const Garment>& shown = window_->avatarView()->garment();
   if (state.scene && shown && state.scene->garment != shown &&
-      state.scene->garment->pieces.size() == shown->pieces.size())
+      state.scene->garment->pieces.size() == shown->pieces.size()) {
     window_->avatarView()->setGarment(state.scene->garment);
+    // The fix's last update, with the remesh's positions, may have come before this state (it
+    // did not fit the mesh shown then); the session at rest sends no other.
+    if (last_update_.positions &&
+        last_update_.positions->rows() == state.scene->garment->vertex_count())
+      window_->setGarmentPositions(last_update_.positions);
+  }
   showClassification(state);
   seed_panel_->setAutomaticSeed(seedText(state.automatic_seed));
   seed_panel_->setSeedInUse((state.seed.manual ? tr("manual: ") : tr("classifier: ")) +

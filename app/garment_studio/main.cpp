@@ -1,13 +1,16 @@
 // garment-studio: the desktop editor. Wiring only; the window lives in ui/.
 //
 //   garment-studio [PATTERN.json] [--body BODY.obj] [--run | --steps N] [--select PIECE[,PIECE…]]
-//                  [--location NAME] [--seed] [--arrange-next PIECE] [--actions NAME[,NAME…]]
+//                  [--location NAME] [--click-location NAME] [--seed] [--arrange-next PIECE]
+//                  [--fix] [--actions NAME[,NAME…]]
 //                  [--screenshot OUT.png [--after-ms N] [--when-idle]] [--size WIDTHxHEIGHT]
 // Without a pattern the bundled demo opens, without a body the bundled default body. --run starts
 // the arrangement at once; --steps runs that many phases; --seed seeds the arrangement with the
-// selected pieces at the chosen location and runs; --arrange-next, once the arrangement is done,
-// arranges that piece next and re-runs. --actions triggers the window's actions of these object
-// names once the window shows (view_overlay_strain, view_body_see_through, …:
+// selected pieces at the chosen location and runs; --click-location clicks that location's marker
+// in the 3D view once the session is ready; --arrange-next, once the arrangement is done, arranges
+// that piece next and re-runs; --fix, once it is done, presses the Quality panel's "Fix
+// automatically" (the screenshot waits for the fix to end). --actions triggers the window's actions
+// of these object names once the window shows (view_overlay_strain, view_body_see_through, …:
 // ui/avatar_view_actions.h).
 // --screenshot saves the window after N ms (default 1500;
 // with --when-idle, N ms after the arrangement has come to rest) and exits (0 saved, 1 not saved
@@ -17,6 +20,7 @@
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QListWidget>
+#include <QMouseEvent>
 #include <QPushButton>
 #include <QRegularExpression>
 #include <QSettings>
@@ -24,6 +28,7 @@
 #include <QTimer>
 #include <cstdio>
 
+#include "ui/avatar_view.h"
 #include "ui/main_window.h"
 #include "ui/manual_seed_panel.h"
 #include "ui/opengl_format.h"
@@ -52,6 +57,9 @@ int main(int argc, char** argv) {
       "seed", "Seed with the selected pieces at the chosen location, and run.");
   const QCommandLineOption next_option(
       "arrange-next", "Once arranged, arrange this piece next and run again.", "piece");
+  const QCommandLineOption click_option(
+      "click-location", "Click the marker of this body location once ready.", "location");
+  const QCommandLineOption fix_option("fix", "Once arranged, press Fix automatically.");
   const QCommandLineOption screenshot_option("screenshot", "Save the window as PNG and exit.",
                                              "file");
   const QCommandLineOption after_option("after-ms", "Delay before the screenshot.", "ms", "1500");
@@ -62,7 +70,7 @@ int main(int argc, char** argv) {
       "actions", "Trigger the window's actions of these object names (a,b).", "names");
   parser.addOptions({body_option, run_option, steps_option, select_option, location_option,
                      seed_option, next_option, screenshot_option, after_option, idle_option,
-                     size_option, actions_option});
+                     size_option, actions_option, fix_option, click_option});
   parser.process(application);
 
   bool delay_ok = false, steps_ok = true;
@@ -128,7 +136,24 @@ int main(int argc, char** argv) {
   const bool seed = parser.isSet(seed_option);
   const QString arrange_next = parser.value(next_option);
   const bool when_idle = parser.isSet(idle_option);
-  bool started = false, next_done = false, shot_due = false;
+  const bool fix = parser.isSet(fix_option);
+  bool started = false, next_done = false, fix_done = false, shot_due = false;
+  // A left click on the marker's projection, as a user's (AvatarView picks it by position).
+  auto click_marker = [&window](const QString& name) {
+    garment::ui::AvatarView* view = window.avatarView();
+    for (std::size_t i = 0; i < view->bodyLocations().size(); ++i) {
+      if (view->bodyLocations()[i].name != name.toStdString()) continue;
+      const QPointF at = view->projectToView(view->bodyLocations()[i].centre);
+      for (QEvent::Type type : {QEvent::MouseButtonPress, QEvent::MouseButtonRelease}) {
+        QMouseEvent event(type, at, view->mapToGlobal(at), Qt::LeftButton,
+                          type == QEvent::MouseButtonPress ? Qt::LeftButton : Qt::NoButton,
+                          Qt::NoModifier);
+        QApplication::sendEvent(view, &event);
+      }
+      return;
+    }
+    std::fprintf(stderr, "garment-studio: no body location named %s\n", qPrintable(name));
+  };
   auto take_screenshot = [&window, path = parser.value(screenshot_option), delay_ms] {
     QTimer::singleShot(delay_ms, &window, [&window, path] {
       const bool saved = garment::ui::save_window_screenshot(window, path);
@@ -141,13 +166,14 @@ int main(int argc, char** argv) {
                      if (!state.has_session) return;
                      if (!started) {
                        started = true;
+                       if (parser.isSet(click_option)) click_marker(parser.value(click_option));
                        if (seed) controller.seedPanel()->seedButton()->click();
                        for (int i = 0; i < steps; ++i)
                          controller.sessionThread()->stepSession();
                        return;
                      }
                      const bool at_rest =
-                         !state.running &&
+                         !state.running && !state.fixing &&
                          (steps > 0 ? state.phases_completed >= steps : state.done);
                      if (!at_rest) return;
                      if (!arrange_next.isEmpty() && !next_done) {
@@ -156,6 +182,15 @@ int main(int argc, char** argv) {
                        controller.arrangeNextAction()->trigger();
                        return;
                      }
+                     if (fix && !fix_done) {
+                       fix_done = true;
+                       auto* button = window.findChild<QPushButton*>("fix_automatically");
+                       if (button && button->isEnabled()) {
+                         button->click();
+                         return;
+                       }
+                       std::fprintf(stderr, "garment-studio: nothing to fix\n");
+                     }
                      if (scripted && when_idle && !shot_due) {
                        shot_due = true;
                        take_screenshot();
@@ -163,10 +198,13 @@ int main(int argc, char** argv) {
                    });
 
   if (scripted && !when_idle) take_screenshot();
-  if (scripted && when_idle)  // an arrangement that never comes to rest fails the script
-    QTimer::singleShot(180000, &window, [] {
-      std::fprintf(stderr, "garment-studio: the arrangement did not come to rest in 180 s\n");
+  if (scripted && when_idle) {  // an arrangement (and a fix) that never comes to rest fails
+    const int limit_s = fix ? 900 : 180;  // a fix solves several attempts
+    QTimer::singleShot(limit_s * 1000, &window, [limit_s] {
+      std::fprintf(stderr, "garment-studio: the arrangement did not come to rest in %d s\n",
+                   limit_s);
       QApplication::exit(1);
     });
+  }
   return QApplication::exec();
 }

@@ -1,0 +1,155 @@
+#include "ui/help_dialogs.h"
+
+#include <QAction>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QHeaderView>
+#include <QLabel>
+#include <QMainWindow>
+#include <QMenu>
+#include <QMenuBar>
+#include <QTableWidget>
+#include <QToolBar>
+#include <QVBoxLayout>
+
+namespace garment::ui {
+
+namespace {
+
+// An action's text as a tooltip shows it: no mnemonic ampersands, no trailing ellipsis.
+QString plain_text(const QAction* action) {
+  QString text = action->text();
+  text.remove('&');
+  if (text.endsWith(QStringLiteral("…"))) text.chop(1);
+  return text.trimmed();
+}
+
+QString shortcut_text(const QAction* action) {
+  return action->shortcut().toString(QKeySequence::NativeText);
+}
+
+// The menu path of each action of `menu`, depth first.
+void collect_menu(QMenu* menu, const QString& path, QList<QAction*>& actions, QStringList& paths) {
+  for (QAction* action : menu->actions()) {
+    if (action->isSeparator()) continue;
+    if (action->menu()) {
+      collect_menu(action->menu(), path + " › " + plain_text(action), actions, paths);
+    } else if (!actions.contains(action)) {
+      actions << action;
+      paths << path;
+    }
+  }
+}
+
+// window_actions() with each action's menu path ("" for toolbar-only actions).
+QList<QAction*> collect(const QMainWindow* window, QStringList& paths) {
+  QList<QAction*> actions;
+  for (QAction* top : window->menuBar()->actions())
+    if (top->menu()) collect_menu(top->menu(), plain_text(top), actions, paths);
+  for (QToolBar* toolbar : window->findChildren<QToolBar*>())
+    for (QAction* action : toolbar->actions())
+      if (!action->isSeparator() && !actions.contains(action)) {
+        actions << action;
+        paths << QString();
+      }
+  return actions;
+}
+
+}  // namespace
+
+QList<QAction*> window_actions(const QMainWindow* window) {
+  QStringList paths;
+  return collect(window, paths);
+}
+
+void show_shortcuts_in_tooltips(const QList<QAction*>& actions) {
+  for (QAction* action : actions) {
+    if (action->property("garment_tooltip_kept").toBool()) continue;
+    action->setProperty("garment_tooltip_kept", true);
+    // An explicit tooltip differs from the one Qt derives from the text; it is kept as written.
+    const QString own = action->toolTip() == plain_text(action) ? QString() : action->toolTip();
+    auto update = [action, own] {
+      const QString base = own.isEmpty() ? plain_text(action) : own;
+      const QString shortcut = shortcut_text(action);
+      const QString tip = shortcut.isEmpty() || base.endsWith("(" + shortcut + ")")
+                              ? base
+                              : base + " (" + shortcut + ")";
+      if (action->toolTip() != tip) action->setToolTip(tip);  // setToolTip emits changed again
+    };
+    QObject::connect(action, &QAction::changed, action, update);
+    update();
+  }
+}
+
+QDialog* create_shortcuts_dialog(QMainWindow* window) {
+  QStringList paths;
+  const QList<QAction*> actions = collect(window, paths);
+  QList<int> rows;  // with a shortcut first, each group in menu order
+  for (int i = 0; i < actions.size(); ++i)
+    if (!actions[i]->shortcut().isEmpty()) rows << i;
+  for (int i = 0; i < actions.size(); ++i)
+    if (actions[i]->shortcut().isEmpty()) rows << i;
+
+  auto* dialog = new QDialog(window);
+  dialog->setObjectName("shortcuts_dialog");
+  dialog->setWindowTitle(QObject::tr("Keyboard shortcuts"));
+  auto* table = new QTableWidget(static_cast<int>(rows.size()), 3, dialog);
+  table->setObjectName("shortcuts_table");
+  table->setHorizontalHeaderLabels(
+      {QObject::tr("Shortcut"), QObject::tr("Action"), QObject::tr("Menu")});
+  table->verticalHeader()->hide();
+  table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  for (int row = 0; row < rows.size(); ++row) {
+    const QAction* action = actions[rows[row]];
+    table->setItem(row, 0, new QTableWidgetItem(shortcut_text(action)));
+    table->setItem(row, 1, new QTableWidgetItem(plain_text(action)));
+    table->setItem(row, 2, new QTableWidgetItem(paths[rows[row]]));
+  }
+  table->resizeColumnsToContents();
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close, dialog);
+  QObject::connect(buttons, &QDialogButtonBox::rejected, dialog, &QDialog::reject);
+  auto* layout = new QVBoxLayout(dialog);
+  layout->addWidget(table);
+  layout->addWidget(buttons);
+  dialog->resize(560, 640);
+  return dialog;
+}
+
+QString about_text() {
+  return QObject::tr(
+             "<h3>garment-studio %1</h3>"
+             "<p>Turns a sewing pattern into a 3D garment on a body: every piece placed around the "
+             "body with no folding and no intersection, seams closed, ready for a cloth "
+             "simulator.</p>"
+             "<p>Implements <i>Automatic Digital Garment Initialization from Sewing Patterns</i> "
+             "(Liu, Xu, Yang, Wang, SIGGRAPH 2024).</p>"
+             "<p><b>Bundled data</b> (resources/LICENSES.md):</p><ul>"
+             "<li>demo pattern: generated by GarmentCode, MIT licence, Copyright (c) 2024 Maria "
+             "Korosteleva;</li>"
+             "<li>default body (mean_all): GarmentCode's mean body shape, MIT licence, Copyright "
+             "(c) 2024 Maria Korosteleva;</li>"
+             "<li>seeding classifier weights: trained by this project on patterns generated by "
+             "GarmentCode (MIT licence).</li></ul>"
+             "<p>Cite Korosteleva, Sorkine-Hornung, <i>GarmentCode</i>, SIGGRAPH Asia 2023, and "
+             "Korosteleva et al., <i>GarmentCodeData</i>, ECCV 2024.</p>")
+      .arg(QStringLiteral(GARMENT_VERSION));
+}
+
+QDialog* create_about_dialog(QWidget* parent) {
+  auto* dialog = new QDialog(parent);
+  dialog->setObjectName("about_dialog");
+  dialog->setWindowTitle(QObject::tr("About garment-studio"));
+  auto* label = new QLabel(about_text(), dialog);
+  label->setObjectName("about_text");
+  label->setWordWrap(true);
+  label->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close, dialog);
+  QObject::connect(buttons, &QDialogButtonBox::rejected, dialog, &QDialog::reject);
+  auto* layout = new QVBoxLayout(dialog);
+  layout->addWidget(label);
+  layout->addWidget(buttons);
+  dialog->resize(520, 420);
+  return dialog;
+}
+
+}  // namespace garment::ui
