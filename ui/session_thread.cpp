@@ -1,14 +1,8 @@
 #include "ui/session_thread.h"
 
-#include <tbb/task_arena.h>
-
 #include <algorithm>
+#include <chrono>
 #include <exception>
-#ifdef __linux__
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-#endif
 
 #include "engine/core/atomic_file.h"
 #include "engine/io/garment_obj.h"
@@ -19,10 +13,6 @@
 #include "engine/quality/verdict.h"
 
 namespace garment::ui {
-
-#ifdef __linux__
-constexpr int kWorkerNiceness = 10;
-#endif
 
 // Runs on the worker: forwards live snapshots to the GUI and polls the interrupt flag.
 class SessionThread::Observer : public SessionObserver {
@@ -36,13 +26,15 @@ class SessionThread::Observer : public SessionObserver {
 
   void snapshot(const SessionSnapshot& snapshot) override {
     // The engine throttles to SessionOptions::snapshot_interval; on top of that at most one live
-    // update is in flight, so that the GUI only ever draws the latest state.
-    if (thread_.update_in_flight_.exchange(true)) return;
+    // update is in flight, so that the GUI only ever draws the latest state, and the next one
+    // waits as acknowledgeUpdate says.
+    if (!thread_.startPacedUpdate()) return;
     SessionUpdate update;
     update.positions = snapshot.positions;
     update.phase = snapshot.phase;
     update.running = snapshot.running;
     update.live = true;
+    update.paced = true;
     update.batch = snapshot.batch;
     update.elapsed_seconds = thread_.arrangementSeconds();
     update.stage = stage_;
@@ -105,6 +97,28 @@ void SessionThread::post(Command command, bool interrupt) {
   }
   if (!isRunning()) start();
   condition_.notify_one();
+}
+
+std::int64_t SessionThread::steadyNanoseconds() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+bool SessionThread::startPacedUpdate() {
+  const std::int64_t now = steadyNanoseconds();
+  if (now < next_live_update_ns_.load()) return false;
+  if (update_in_flight_.exchange(true)) return false;
+  live_update_sent_ns_ = now;
+  return true;
+}
+
+void SessionThread::acknowledgeUpdate() {
+  const std::int64_t now = steadyNanoseconds();
+  const std::int64_t drawing = now - live_update_sent_ns_.load();
+  const double pause = std::min(drawing * (1.0 / kLiveDrawShare - 1.0), kMaxLivePause * 1e9);
+  next_live_update_ns_ = now + static_cast<std::int64_t>(pause);
+  update_in_flight_ = false;
 }
 
 void SessionThread::sendToGui(std::function<void()> emission) {
@@ -204,13 +218,10 @@ bool SessionThread::wantsToStep() const {
 }
 
 void SessionThread::run() {
-#ifdef __linux__
-  // The solve yields the processor to the GUI thread (and the OpenGL rasteriser's threads) when
-  // they compete for it; Linux sets a nice value per thread.
-  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kWorkerNiceness);
-#endif
   Observer observer(*this);
   for (;;) {
+    // The run has stopped (paused, done, stepped): the window shows where it stands.
+    if (update_held_ && !wantsToStep()) publishUpdate(false);
     std::deque<Command> commands;
     {
       std::unique_lock lock(mutex_);
@@ -241,14 +252,12 @@ void SessionThread::run() {
 
 void SessionThread::stepOnce(Observer& observer) {
   const std::size_t checkpoints = session_->checkpoint_count();
-  // The solver's parallel loops leave one core to the GUI thread (and the OpenGL rasteriser),
-  // so that the window stays responsive while a phase runs; on one core they share it.
-  const int cores = std::max(1, QThread::idealThreadCount());
-  tbb::task_arena arena(std::max(1, cores - 1));
-  Phase ran = Phase::Seed;
+  // On every core, as `garment-init run`: the same garment as the command line's (results depend
+  // on the number of threads), as fast. The window stays responsive because the live updates are
+  // paced (acknowledgeUpdate) and the GUI thread, asleep between them, is scheduled first.
   seconds_before_phase_ = session_->report().seconds;
   phase_started_ = std::chrono::steady_clock::now();
-  arena.execute([&] { ran = session_->step(&observer); });
+  const Phase ran = session_->step(&observer);
   phase_started_.reset();
   // A completed phase adds a checkpoint; a cancelled one is undone by the engine and adds none.
   last_cancelled_ = session_->checkpoint_count() == checkpoints;
@@ -262,7 +271,16 @@ void SessionThread::stepOnce(Observer& observer) {
     history_ << checkpointLabel(ran);
     if (session_->done()) running_ = false;
   }
-  publishUpdate();
+  // Between the phases of a run, the update is paced as the live ones are (a phase can take
+  // milliseconds): held when not due, and sent when the run stops.
+  if (running_ && !session_->done()) {
+    if (startPacedUpdate())
+      publishUpdate(true);
+    else
+      update_held_ = true;
+  } else {
+    publishUpdate(false);
+  }
   publishState();
 }
 
@@ -317,7 +335,7 @@ void SessionThread::execute(const Command& command) {
         last_phase_.clear();
         last_cancelled_ = false;
         history_ = QStringList{QStringLiteral("0. start")};
-        publishUpdate();
+        publishUpdate(false);
         publishState();
         return;
       }
@@ -398,7 +416,7 @@ void SessionThread::execute(const Command& command) {
   }
   labelNewStarts();
   last_cancelled_ = false;
-  publishUpdate();
+  publishUpdate(false);
   publishState();
 }
 
@@ -460,9 +478,8 @@ void SessionThread::fix() {
   attempt_shown_ = 0;
   fixing_ = true;
   publishState();
-  RecoverySettings settings;
-  // Every core but one, as the arrangement's phases (stepOnce): the window stays responsive.
-  settings.threads = std::max(1, QThread::idealThreadCount() - 1);
+  // On every core, as `garment-init run` recovers: the same attempts, the same garment chosen.
+  const RecoverySettings settings;
   checker();  // builds body_reference_
   FixObserver observer(*this);
   try {
@@ -502,7 +519,7 @@ void SessionThread::showAttempt(int index) {
                      : tr("%1. before %2").arg(i).arg(QString::fromUtf8(to_string(phase))));
   }
   last_cancelled_ = false;
-  publishUpdate();
+  publishUpdate(false);
   publishState();
 }
 
@@ -521,9 +538,11 @@ const GarmentChecker& SessionThread::checker() {
   return *checker_;
 }
 
-void SessionThread::publishUpdate() {
+void SessionThread::publishUpdate(bool paced) {
+  update_held_ = false;
   const SessionSnapshot snapshot = session_->snapshot();
   SessionUpdate update;
+  update.paced = paced;
   update.positions = snapshot.positions;
   update.phase = snapshot.phase;
   update.running = snapshot.running;

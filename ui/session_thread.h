@@ -48,6 +48,9 @@ struct SessionUpdate {
   Phase phase = Phase::Seed;    // the phase about to run (Done at the end)
   Phase running = Phase::Seed;  // the phase being solved (live updates)
   bool live = false;            // sent during a solve
+  // Sent under the pacing of acknowledgeUpdate (live updates, and those between phases of a run):
+  // the GUI acknowledges it once drawn.
+  bool paced = false;
   int batch = -1;
   double elapsed_seconds = 0.0;  // the arrangement's clock (SessionThread::arrangementSeconds)
   QString stage;                 // the solver's stage name (live updates)
@@ -127,9 +130,20 @@ class SessionThread : public QThread {
   // Writes the current (last completed phase's) garment; reports through exportFinished.
   void exportTo(ExportKind kind, const QString& path);
 
-  // The GUI calls this once it has shown a live update: until then further live updates are
-  // dropped, so that a slow GUI never falls behind a queue of stale frames.
-  void acknowledgeUpdate() { update_in_flight_ = false; }
+  // The GUI calls this once it has drawn a live update: until then further live updates are
+  // dropped, so that a slow GUI never falls behind a queue of stale frames; and the next one is
+  // sent only after the time it took (sent → drawn) times 1 / kLiveDrawShare − 1 (at most
+  // kMaxLivePause), so that drawing takes at most that share of the time, whatever the
+  // renderer's speed.
+  void acknowledgeUpdate();
+
+  // The share of the arrangement's time that drawing live updates may take. With the GUI and a
+  // software rasteriser on the solver's cores (Xvfb: 35-45 ms a frame), drawing every snapshot
+  // (30 a second) took 3× the solver's processor time on the demo (bench_studio); on a GPU the
+  // pace stays near SessionOptions::snapshot_interval.
+  static constexpr double kLiveDrawShare = 0.05;
+  // But a frame at least every second (seconds), so that the view stays live however slow it is.
+  static constexpr double kMaxLivePause = 1.0;
 
  signals:
   // Emitted on the thread that owns this object (the GUI thread).
@@ -184,7 +198,10 @@ class SessionThread : public QThread {
   void execute(const Command& command);
   void stepOnce(Observer& observer);
   void publishState();
-  void publishUpdate();
+  // paced: sent under the pacing of live updates (startPacedUpdate), to be acknowledged.
+  void publishUpdate(bool paced);
+  // Whether a paced update may be sent now (and then it is in flight).
+  bool startPacedUpdate();
   void exportFile(ExportKind kind, const QString& path);
   void fix();                   // worker thread: Command::Fix
   void showAttempt(int index);  // worker thread: makes attempt `index` the session
@@ -210,8 +227,12 @@ class SessionThread : public QThread {
   // Read by the engine's cancellation polls without the mutex.
   std::atomic<bool> interrupt_{false};
   std::atomic<bool> update_in_flight_{false};
+  std::atomic<std::int64_t> live_update_sent_ns_{0};  // steady clock, of the update in flight
+  std::atomic<std::int64_t> next_live_update_ns_{0};  // none sent before this
+  static std::int64_t steadyNanoseconds();
 
   // Worker thread only.
+  bool update_held_ = false;  // a paced update between phases was not sent (not due)
   std::shared_ptr<const Scene> scene_;
   std::shared_ptr<Session> session_;  // shared with the last fix's attempts
   // The scene's quality checker, built when the first verdict or report needs it and kept with the

@@ -8,6 +8,7 @@
 #include <QMenu>
 #include <QPushButton>
 #include <QSettings>
+#include <QTimer>
 #include <QToolBar>
 #include <algorithm>
 #include <exception>
@@ -146,6 +147,8 @@ StudioController::StudioController(MainWindow* window, SessionOptions options)
   connect(window_, &MainWindow::bodyOpened, this, &StudioController::openSession);
 
   connect(thread_.get(), &SessionThread::updated, this, &StudioController::applyUpdate);
+  connect(window_->avatarView(), &QOpenGLWidget::frameSwapped, this,
+          &StudioController::acknowledgeDrawn);
   connect(thread_.get(), &SessionThread::stateChanged, this, &StudioController::applyState);
   connect(thread_.get(), &SessionThread::failed, window_, &MainWindow::showError);
   connect(thread_.get(), &SessionThread::exportFinished, this,
@@ -182,10 +185,13 @@ void StudioController::openSession() {
 }
 
 void StudioController::applyUpdate(const SessionUpdate& update) {
-  thread_->acknowledgeUpdate();
   // An update of a session replaced since (the worker may have sent it before the new one).
-  if (opening_ || !window_->garment() || update.pieces.size() != window_->garment()->pieces.size())
+  if (opening_ || !window_->garment() ||
+      update.pieces.size() != window_->garment()->pieces.size()) {
+    if (update.paced) thread_->acknowledgeUpdate();
     return;
+  }
+  if (update.paced) acknowledgeWhenDrawn();
   last_update_ = update;
   if (update.live) ++live_updates_;
   window_->setGarmentPositions(update.positions);
@@ -217,6 +223,24 @@ void StudioController::applyUpdate(const SessionUpdate& update) {
   // verdict shown, and a run under way has none.
   if (done) status.quality_failures = window_->arrangementStatusBar()->status().quality_failures;
   window_->setArrangementStatus(status);
+}
+
+void StudioController::acknowledgeWhenDrawn() {
+  if (!window_->avatarView()->isVisible() || window_->isMinimized()) {
+    thread_->acknowledgeUpdate();  // nothing will be drawn
+    return;
+  }
+  awaiting_frame_ = true;
+  // Should no frame come (a window the system does not draw), the worker is not held for long.
+  QTimer::singleShot(kFrameWaitMs, this, [this, serial = ++frame_wait_serial_] {
+    if (serial == frame_wait_serial_) acknowledgeDrawn();
+  });
+}
+
+void StudioController::acknowledgeDrawn() {
+  if (!awaiting_frame_) return;
+  awaiting_frame_ = false;
+  thread_->acknowledgeUpdate();
 }
 
 void StudioController::applyState(const SessionState& state) {

@@ -56,8 +56,14 @@ class StudioController : public QObject {
   void exportDone(const QString& path, const QString& error);
 
  private:
+  static constexpr int kFrameWaitMs = 500;
+
   void openSession();
   void applyUpdate(const SessionUpdate& update);
+  // A live update is acknowledged to the worker once the avatar view has drawn it (at once when
+  // the view draws nothing): the worker paces the next by the time that took.
+  void acknowledgeWhenDrawn();
+  void acknowledgeDrawn();
   void applyState(const SessionState& state);
   void updateActions();
   void showOrder(const std::vector<int>& arranged);
@@ -96,6 +102,8 @@ class StudioController : public QObject {
   bool run_when_opened_ = false;
   bool opening_ = false;  // a session was asked for and has not reported yet
   int live_updates_ = 0;
+  bool awaiting_frame_ = false;  // a live update applied, its frame not drawn yet
+  int frame_wait_serial_ = 0;    // the fallback wait that may still acknowledge it
 
   ManualSeedPanel* seed_panel_ = nullptr;
   QListWidget* history_list_ = nullptr;
