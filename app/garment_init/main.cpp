@@ -61,7 +61,7 @@ const Command kCommands[] = {
      garment::cli::run_command},
     {"batch",
      "batch DIR -o OUTDIR [--jobs N] [--body BODY.obj] [--bodies DIR] [--time-limit S] [--limit N] "
-     "[--parameters P.json] [--attempts N] [--export KINDS]",
+     "[--parameters P.json] [--attempts N] [--export KINDS] [--shard K/N]",
      "Runs `run` on every pattern in DIR, each in its own process with one thread and a time "
      "limit\n"
      "(default 300 s), --jobs at a time (default: the number of cores). Each pattern goes on its "
@@ -74,7 +74,10 @@ const Command kCommands[] = {
      "DIR or lie inside it; jobs die with the batch. Prints a progress bar on a terminal and\n"
      "writes summary.md and summary.json: success\n"
      "rate (clean at the first pass, recovered, failed, designs that cannot fit), failures by\n"
-     "class, time per garment (median, p95, max).",
+     "class, time per garment (median, p95, max).\n"
+     "--shard K/N (K 1-based, 1 <= K <= N) runs one part of the batch, for N machines: of the\n"
+     "name-sorted patterns (the first --limit of them), those at 0-based positions i with\n"
+     "i % N == K - 1; its summary says which shard it is.",
      garment::cli::batch_command},
     {"body", "body [BODY.obj] [--json] [--spacing M] [--no-cache]",
      "Loads a body (default: the bundled resources/bodies/mean_all.obj): OBJ with triangles or\n"
