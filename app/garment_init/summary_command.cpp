@@ -35,7 +35,8 @@ std::string shard_name(const Shard& shard) {
 // How many of `shard.patterns` patterns batch --shard gives to `shard` (round robin).
 int shard_size(const Shard& shard) {
   const int rest = shard.patterns - (shard.index - 1);
-  return rest > 0 ? (rest + shard.count - 1) / shard.count : 0;
+  // ceil(rest / count), written so that no sum can overflow on a count read from a file.
+  return rest > 0 ? (rest - 1) / shard.count + 1 : 0;
 }
 
 int whole_number(const nlohmann::json& object, const std::string& where, const char* key) {
@@ -70,7 +71,7 @@ ShardSummary read_shard_summary(const std::filesystem::path& folder) {
       throw InputError(file + ": shard: index " + std::to_string(summary.shard.index) +
                        " of count " + std::to_string(summary.shard.count) + ", " +
                        std::to_string(summary.shard.patterns) +
-                       " patterns: expected 1 <= index <= count");
+                       " patterns: expected 1 <= index <= count, patterns >= 0");
   } else {
     summary.shard = {1, 1, static_cast<int>(results.size())};
   }
