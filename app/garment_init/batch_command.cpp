@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -18,9 +19,9 @@
 #include <map>
 #include <mutex>
 #include <optional>
-#include <sstream>
 #include <thread>
 
+#include "batch_summary.h"
 #include "command_line.h"
 #include "commands.h"
 #include "engine/body/default_body.h"
@@ -41,19 +42,6 @@ struct Job {
   std::filesystem::path pattern;
   std::filesystem::path body;
   std::string name;  // file stem
-};
-
-struct Outcome {
-  std::string name;
-  std::string body;
-  std::string status;  // ok, fails, error, timeout, crash
-  double seconds = 0.0;
-  int vertices = 0, pieces = 0, batches = 0, revisits = 0;
-  std::vector<std::string> failures;  // failure kinds
-  std::string message;
-  int attempts = 1;        // sessions run by the recovery, the first pass included
-  bool recovered = false;  // clean by an attempt after the first pass
-  std::string cannot_fit;  // the report's cannot_fit message: a design that cannot fit the body
 };
 
 // index.json of GarmentCode datasets: file name → the body it was made for.
@@ -229,112 +217,22 @@ std::optional<Outcome> previous_outcome(const Job& job, const std::filesystem::p
   return outcome;
 }
 
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t index =
-      std::min(values.size() - 1, static_cast<std::size_t>(fraction * (values.size() - 1) + 0.5));
-  return values[index];
-}
-
-void write_summary(const std::vector<Outcome>& outcomes, const std::filesystem::path& output,
-                   double wall_seconds) {
-  std::map<std::string, int> statuses, failure_kinds;
-  std::vector<double> times;
-  int recovered = 0;
-  nlohmann::json cannot_fit = nlohmann::json::array();
-  for (const Outcome& outcome : outcomes) {
-    ++statuses[outcome.status];
-    recovered += outcome.recovered ? 1 : 0;
-    if (!outcome.cannot_fit.empty())
-      cannot_fit.push_back({{"name", outcome.name}, {"message", outcome.cannot_fit}});
-    for (const std::string& kind : outcome.failures)
-      ++failure_kinds[kind];
-    if (outcome.status == "ok" || outcome.status == "fails") times.push_back(outcome.seconds);
-  }
-  const int total = static_cast<int>(outcomes.size());
-  const double success = total > 0 ? 100.0 * statuses["ok"] / total : 0.0;
-  nlohmann::json json;
-  json["patterns"] = total;
-  json["succeeded"] = statuses["ok"];
-  json["success_rate"] = success;
-  // Clean garments split by how: the first pass, or an attempt of the recovery.
-  json["clean_first_pass"] = statuses["ok"] - recovered;
-  json["recovered"] = recovered;
-  json["failed"] = total - statuses["ok"];
-  // Failed garments whose design cannot fit the body (counted in `failed` too).
-  json["cannot_fit"] = cannot_fit;
-  json["statuses"] = statuses;
-  json["failures_by_class"] = failure_kinds;
-  json["seconds"] = {{"median", percentile(times, 0.5)},
-                     {"p95", percentile(times, 0.95)},
-                     {"max", times.empty() ? 0.0 : *std::max_element(times.begin(), times.end())},
-                     {"wall", wall_seconds}};
-  json["results"] = nlohmann::json::array();
-  std::ostringstream markdown;
-  markdown
-      << "# Batch summary\n\n"
-      << "| patterns | succeeded | success rate | clean at first pass | recovered | failed | "
-         "median s | p95 s | max s |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-  char line[256];
-  std::snprintf(line, sizeof line, "| %d | %d | %.1f %% | %d | %d | %d | %.2f | %.2f | %.2f |\n\n",
-                total, statuses["ok"], success, statuses["ok"] - recovered, recovered,
-                total - statuses["ok"], percentile(times, 0.5), percentile(times, 0.95),
-                json["seconds"]["max"].get<double>());
-  markdown << line;
-  if (!cannot_fit.empty()) {
-    markdown << "Designs that cannot fit the body (failed, no attempt made):\n\n";
-    for (const auto& entry : cannot_fit)
-      markdown << "- " << entry["name"].get<std::string>() << ": "
-               << entry["message"].get<std::string>() << "\n";
-    markdown << "\n";
-  }
-  markdown << "| status | count |\n| --- | --- |\n";
-  for (const auto& [status, count] : statuses)
-    markdown << "| " << status << " | " << count << " |\n";
-  markdown << "\n| failure class | garments |\n| --- | --- |\n";
-  for (const auto& [kind, count] : failure_kinds)
-    markdown << "| " << kind << " | " << count << " |\n";
-  markdown << "\n| pattern | body | status | seconds | vertices | pieces | batches | revisits | "
-              "attempts | failures |\n"
-           << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-  for (const Outcome& outcome : outcomes) {
-    std::string failures;
-    for (const std::string& kind : outcome.failures)
-      failures += (failures.empty() ? "" : ", ") + kind;
-    if (!outcome.message.empty()) failures += (failures.empty() ? "" : "; ") + outcome.message;
-    std::snprintf(line, sizeof line, "| %s | %s | %s%s | %.2f | %d | %d | %d | %d | %d | %s |\n",
-                  outcome.name.c_str(), outcome.body.c_str(), outcome.status.c_str(),
-                  outcome.recovered ? " (recovered)" : "", outcome.seconds, outcome.vertices,
-                  outcome.pieces, outcome.batches, outcome.revisits, outcome.attempts,
-                  failures.c_str());
-    markdown << line;
-    json["results"].push_back({{"name", outcome.name},
-                               {"body", outcome.body},
-                               {"status", outcome.status},
-                               {"seconds", outcome.seconds},
-                               {"vertices", outcome.vertices},
-                               {"failures", outcome.failures},
-                               {"attempts", outcome.attempts},
-                               {"recovered", outcome.recovered},
-                               {"cannot_fit", outcome.cannot_fit},
-                               {"message", outcome.message}});
-  }
-  write_file_atomically(output / "summary.md", markdown.str());
-  write_file_atomically(output / "summary.json", json.dump(2) + "\n");
-  std::printf(
-      "%d patterns: %d ok (%.1f %%: %d at the first pass, %d recovered), time per garment median "
-      "%.2f s, p95 %.2f s, max %.2f s\n",
-      total, statuses["ok"], success, statuses["ok"] - recovered, recovered, percentile(times, 0.5),
-      percentile(times, 0.95), json["seconds"]["max"].get<double>());
-  for (const auto& [kind, count] : failure_kinds)
-    std::printf("  %-20s %d\n", kind.c_str(), count);
-  if (!cannot_fit.empty())
-    std::printf("  %-20s %zu (designs that cannot fit the body)\n", "cannot_fit",
-                cannot_fit.size());
-  for (const auto& [status, count] : statuses)
-    if (status != "ok" && status != "fails") std::printf("  %-20s %d\n", status.c_str(), count);
-  std::printf("summary: %s\n", (output / "summary.md").c_str());
+// --shard K/N: 1 <= K <= N, whole numbers, nothing else in the word.
+Shard parse_shard(const std::string& text) {
+  Shard shard;
+  const std::size_t slash = text.find('/');
+  const auto whole = [&](std::size_t begin, std::size_t end, int& value) {
+    const char* first = text.data() + begin;
+    const char* last = text.data() + end;
+    const auto [stop, error] = std::from_chars(first, last, value);
+    return begin < end && error == std::errc() && stop == last;
+  };
+  if (slash == std::string::npos || !whole(0, slash, shard.index) ||
+      !whole(slash + 1, text.size(), shard.count) || shard.count < 1 || shard.index < 1 ||
+      shard.index > shard.count)
+    throw UsageError("--shard K/N: K and N whole numbers, 1 <= K <= N (got '" + printable(text) +
+                     "')");
+  return shard;
 }
 
 }  // namespace
@@ -342,7 +240,7 @@ void write_summary(const std::vector<Outcome>& outcomes, const std::filesystem::
 int batch_command(const std::vector<std::string>& args) {
   const CommandLine line(args, {},
                          {"-o", "--jobs", "--body", "--bodies", "--time-limit", "--limit",
-                          "--parameters", "--attempts", "--export"});
+                          "--parameters", "--attempts", "--export", "--shard"});
   const std::filesystem::path folder = line.only_positional("pattern folder");
   const auto output_value = line.value("-o");
   if (!output_value) throw UsageError("-o OUTDIR is required");
@@ -357,6 +255,8 @@ int batch_command(const std::vector<std::string>& args) {
   if (jobs < 1) throw UsageError("--jobs must be at least 1");
   const int attempts = line.integer("--attempts", RecoverySettings{}.attempts);
   if (attempts < 1) throw UsageError("--attempts must be 1 (a single pass) or more");
+  std::optional<Shard> shard;
+  if (const auto value = line.value("--shard")) shard = parse_shard(*value);
   // Checked here, before any job: each job's `run` gets the list as it is.
   const std::string export_list = line.value("--export").value_or("");
   std::vector<SewnExport> exports;
@@ -385,6 +285,18 @@ int batch_command(const std::vector<std::string>& args) {
     if (limit > 0 && static_cast<int>(all.size()) >= limit) break;
   }
   if (all.empty()) throw InputError(folder.string() + ": no pattern files");
+  // Round robin over the name-sorted list rather than contiguous blocks: neighbouring patterns of
+  // a dataset tend to be alike (gc_0000..), so each shard gets a similar mix and a similar time.
+  // A shard may be empty (more shards than patterns): it writes an empty summary, so that the
+  // merge of a job array still finds every shard.
+  if (shard) {
+    shard->patterns = static_cast<int>(all.size());
+    std::vector<Job> mine;
+    for (auto i = static_cast<std::size_t>(shard->index - 1); i < all.size();
+         i += static_cast<std::size_t>(shard->count))
+      mine.push_back(all[i]);
+    all = std::move(mine);
+  }
   // The output folder may not be the pattern folder or inside it: its reports are .json files,
   // read back as patterns by the next run of the batch.
   OutputPlan plan;
@@ -415,6 +327,8 @@ int batch_command(const std::vector<std::string>& args) {
       pending.push_back(i);
   }
   const bool terminal = ::isatty(STDOUT_FILENO);
+  if (shard)
+    std::printf("shard %d/%d of %d patterns: ", shard->index, shard->count, shard->patterns);
   std::printf("%zu patterns, %zu already done, %d jobs\n", all.size(), all.size() - pending.size(),
               jobs);
   std::atomic<std::size_t> next{0}, finished{0};
@@ -441,8 +355,9 @@ int batch_command(const std::vector<std::string>& args) {
   for (auto& thread : threads)
     thread.join();
   if (terminal) std::printf("\n");
-  write_summary(outcomes, output,
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  write_batch_summary(
+      outcomes, output,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), shard);
   return kSuccess;
 }
 

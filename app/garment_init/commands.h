@@ -18,6 +18,7 @@ struct Command {
 int inspect_command(const std::vector<std::string>& args);
 int run_command(const std::vector<std::string>& args);
 int batch_command(const std::vector<std::string>& args);
+int summary_command(const std::vector<std::string>& args);
 int body_command(const std::vector<std::string>& args);
 int check_command(const std::vector<std::string>& args);
 int flat_command(const std::vector<std::string>& args);

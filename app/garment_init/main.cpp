@@ -61,7 +61,7 @@ const Command kCommands[] = {
      garment::cli::run_command},
     {"batch",
      "batch DIR -o OUTDIR [--jobs N] [--body BODY.obj] [--bodies DIR] [--time-limit S] [--limit N] "
-     "[--parameters P.json] [--attempts N] [--export KINDS]",
+     "[--parameters P.json] [--attempts N] [--export KINDS] [--shard K/N]",
      "Runs `run` on every pattern in DIR, each in its own process with one thread and a time "
      "limit\n"
      "(default 300 s), --jobs at a time (default: the number of cores). Each pattern goes on its "
@@ -74,8 +74,20 @@ const Command kCommands[] = {
      "DIR or lie inside it; jobs die with the batch. Prints a progress bar on a terminal and\n"
      "writes summary.md and summary.json: success\n"
      "rate (clean at the first pass, recovered, failed, designs that cannot fit), failures by\n"
-     "class, time per garment (median, p95, max).",
+     "class, time per garment (median, p95, max).\n"
+     "--shard K/N (K 1-based, 1 <= K <= N) runs one part of the batch, for N machines: of the\n"
+     "name-sorted patterns (the first --limit of them), those at 0-based positions i with\n"
+     "i % N == K - 1; its summary says which shard it is. `summary` merges the shards' OUTDIRs.",
      garment::cli::batch_command},
+    {"summary", "summary OUTDIR... [-o MERGED_DIR]",
+     "Merges the summaries of the shards of a batch (batch --shard K/N, each OUTDIR one shard):\n"
+     "writes MERGED_DIR/summary.md and summary.json as `batch` over all the patterns writes them\n"
+     "(same results in the same order, same counts), and prints its totals; without -o only\n"
+     "prints them. Timing differs as between any two runs: each garment's seconds come from its\n"
+     "shard, and the wall time is the slowest shard's (shards run side by side). Every shard\n"
+     "1..N must be given once, each pattern in one shard only; MERGED_DIR may not be an OUTDIR.\n"
+     "An OUTDIR of a batch without --shard counts as shard 1/1.",
+     garment::cli::summary_command},
     {"body", "body [BODY.obj] [--json] [--spacing M] [--no-cache]",
      "Loads a body (default: the bundled resources/bodies/mean_all.obj): OBJ with triangles or\n"
      "polygons, metres or centimetres (detected); closed, manifold surface required. Prints its\n"
