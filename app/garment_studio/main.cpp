@@ -2,7 +2,7 @@
 //
 //   garment-studio [PATTERN.json] [--body BODY.obj] [--run | --steps N] [--select PIECE[,PIECE…]]
 //                  [--location NAME] [--click-location NAME] [--seed] [--arrange-next PIECE]
-//                  [--fix] [--actions NAME[,NAME…]]
+//                  [--fix] [--actions NAME[,NAME…]] [--threads N]
 //                  [--screenshot OUT.png [--after-ms N] [--when-idle]] [--size WIDTHxHEIGHT]
 // Without a pattern the bundled demo opens, without a body the bundled default body. --run starts
 // the arrangement at once; --steps runs that many phases; --seed seeds the arrangement with the
@@ -11,11 +11,13 @@
 // that piece next and re-runs; --fix, once it is done, presses the Quality panel's "Fix
 // automatically" (the screenshot waits for the fix to end). --actions triggers the window's actions
 // of these object names once the window shows (view_overlay_strain, view_body_see_through, …:
-// ui/avatar_view_actions.h).
+// ui/avatar_view_actions.h). --threads N arranges on N threads (default 0: every core, as
+// `garment-init run`): the result depends on the count, so the same N gives the CLI's garment.
 // --screenshot saves the window after N ms (default 1500;
 // with --when-idle, N ms after the arrangement has come to rest) and exits (0 saved, 1 not saved
 // or timed out, 2 bad arguments, 3 a file failed to open), with fresh settings.
 
+#include <tbb/global_control.h>
 #include <QAction>
 #include <QApplication>
 #include <QCommandLineParser>
@@ -27,6 +29,7 @@
 #include <QTemporaryDir>
 #include <QTimer>
 #include <cstdio>
+#include <optional>
 
 #include "ui/avatar_view.h"
 #include "ui/main_window.h"
@@ -68,21 +71,27 @@ int main(int argc, char** argv) {
   const QCommandLineOption size_option("size", "Window size, e.g. 1440x900.", "size");
   const QCommandLineOption actions_option(
       "actions", "Trigger the window's actions of these object names (a,b).", "names");
+  const QCommandLineOption threads_option(
+      "threads", "Threads to arrange on (0: every core); as garment-init run --threads.", "n", "0");
   parser.addOptions({body_option, run_option, steps_option, select_option, location_option,
                      seed_option, next_option, screenshot_option, after_option, idle_option,
-                     size_option, actions_option, fix_option, click_option});
+                     size_option, actions_option, fix_option, click_option, threads_option});
   parser.process(application);
 
-  bool delay_ok = false, steps_ok = true;
+  bool delay_ok = false, steps_ok = true, threads_ok = false;
   const int delay_ms = parser.value(after_option).toInt(&delay_ok);
+  const int threads = parser.value(threads_option).toInt(&threads_ok);
   const int steps = parser.isSet(steps_option) ? parser.value(steps_option).toInt(&steps_ok) : 0;
   const QRegularExpressionMatch size =
       QRegularExpression("^(\\d+)x(\\d+)$").match(parser.value(size_option));
-  if (!delay_ok || delay_ms < 0 || !steps_ok || steps < 0 ||
+  if (!delay_ok || delay_ms < 0 || !steps_ok || steps < 0 || !threads_ok || threads < 0 ||
       (parser.isSet(size_option) && !size.hasMatch()) || parser.positionalArguments().size() > 1) {
     std::fprintf(stderr, "garment-studio: bad arguments (see --help)\n");
     return 2;
   }
+
+  std::optional<tbb::global_control> thread_limit;
+  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
 
   const bool scripted = parser.isSet(screenshot_option);
   // Screenshots start from default settings (no saved layout, no recent files) and leave the

@@ -62,9 +62,9 @@ class StudioVerdictTest : public QObject, test::StudioHarness {
   Q_OBJECT
 
  private:
-  // The studio gives the solver every core but one, and an arrangement's result depends on the
-  // thread count (it is part of the input): one thread here, whatever the machine, as a 2-core
-  // machine runs it.
+  // The studio gives the solver every core, and an arrangement's result depends on the
+  // thread count (it is part of the input): one thread here, whatever the machine (on one,
+  // gc_0477's first pass fails; on two it is clean).
   const tbb::global_control one_thread_{tbb::global_control::max_allowed_parallelism, 1};
 
   // A window on a pattern and a body with a session ready (nothing run yet).
