@@ -27,7 +27,9 @@
 
 #include "engine/io/garment_obj.h"
 #include "engine/io/sewn_export.h"
+#include "engine/seeding/scene.h"
 #include "tests/support/test_environment.h"
+#include "tests/support/test_paths.h"
 #include "tests/ui/studio_harness.h"
 #include "tests/ui/ui_test_support.h"
 #include "ui/arrangement_order_list.h"
@@ -36,6 +38,7 @@
 #include "ui/main_window.h"
 #include "ui/manual_seed_panel.h"
 #include "ui/pattern_view.h"
+#include "ui/session_thread.h"
 #include "ui/studio_controller.h"
 
 using namespace garment;
@@ -143,6 +146,54 @@ class StudioSessionTest : public QObject, test::StudioHarness {
     qInfo("3D view repaint, idle: %.1f ms per frame, %.1f ms CPU time (%d cores)",
           paint_clock.elapsed() / 10.0, 1000.0 * (std::clock() - cpu_start) / CLOCKS_PER_SEC / 10.0,
           QThread::idealThreadCount());
+  }
+
+  void liveUpdatesArePacedByTheirDrawingTime() {
+    // The worker alone, with a GUI that takes kDrawMs to draw each paced update: after each
+    // acknowledgement the next paced update waits 1 / kLiveDrawShare − 1 times the time from its
+    // sending to its acknowledgement (at least the time from its arrival, measured here), or
+    // kMaxLivePause. Unpaced, they would come every snapshot_interval (30 ms).
+    constexpr int kDrawMs = 25;
+    const auto scene = load_scene(test::test_data("patterns/recovery/gc_0477_specification.json"),
+                                  test::test_data("bodies/f_smpl_average_A40.obj"), {});
+    ui::SessionThread thread;
+    QElapsedTimer clock;
+    clock.start();
+    struct Paced {
+      qint64 arrived_ms, acknowledged_ms;
+    };
+    std::vector<Paced> paced;
+    bool done = false, ready = false;
+    connect(&thread, &ui::SessionThread::updated, this, [&](const ui::SessionUpdate& update) {
+      if (update.phase == Phase::Done) done = true;
+      if (!update.paced) return;
+      const qint64 arrived = clock.elapsed();
+      QTimer::singleShot(kDrawMs, this, [&, arrived] {
+        paced.push_back({arrived, clock.elapsed()});
+        thread.acknowledgeUpdate();
+      });
+    });
+    connect(&thread, &ui::SessionThread::stateChanged, this,
+            [&](const ui::SessionState& state) { ready = state.has_session; });
+    thread.openScene(scene->garment, scene->body,
+                     test::sanitizer_build() ? test::quick_options() : SessionOptions{});
+    QVERIFY(QTest::qWaitFor([&] { return ready; }, 120000));
+    thread.runSession();
+    QVERIFY(QTest::qWaitFor([&] { return done; }, 240000));
+    qInfo("%zu paced updates in %lld ms", paced.size(), clock.elapsed());
+    QVERIFY2(paced.size() >= 2, "the live view must not starve");
+    const double factor = 1.0 / ui::SessionThread::kLiveDrawShare - 1.0;
+    for (std::size_t i = 0; i + 1 < paced.size(); ++i) {
+      const double drawing = static_cast<double>(paced[i].acknowledged_ms - paced[i].arrived_ms);
+      const double wanted = std::min(factor * drawing, 1000.0 * ui::SessionThread::kMaxLivePause);
+      const double pause = static_cast<double>(paced[i + 1].arrived_ms - paced[i].acknowledged_ms);
+      // 2 ms for the clocks' rounding to milliseconds.
+      QVERIFY2(pause >= wanted - 2.0, qPrintable(QString("update %1: %2 ms after its predecessor "
+                                                         "was drawn in %3 ms")
+                                                     .arg(i + 1)
+                                                     .arg(pause)
+                                                     .arg(drawing)));
+    }
   }
 
   void eventLoopStaysResponsiveWhileSolving() {
