@@ -103,11 +103,12 @@ const Command kCommands[] = {
      "cloth crossing, no fold, strain <= 20 %, seam gap <= 5 mm, nothing misplaced. Exit 0\n"
      "when ok, 3 when not. --json prints one object.",
      garment::cli::check_command},
-    {"flat", "flat PATTERN.json -o OUT.obj [--edge-length M]",
+    {"flat", "flat PATTERN.json -o OUT.obj [--edge-length M] [--export KINDS]",
      "Writes the pieces flat where the pattern file places them (world = R(x, y, 0) +\n"
      "translation, R = Rz.Ry.Rx of the panel rotation), unsimulated: the state GarmentCode's\n"
      "simulator starts from, the reference to compare with. OBJ as exported (one group per\n"
-     "panel, vt = pattern coordinates, metres).",
+     "panel, vt = pattern coordinates, metres). --export as in `run` (sewing-obj: the start\n"
+     "for scripts/blender-drape).",
      garment::cli::flat_command},
     {"seed",
      "seed PATTERN.json [--body BODY.obj] [--json] [-o SEED.obj] [--seed-pieces a,b "
