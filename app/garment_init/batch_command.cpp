@@ -104,7 +104,7 @@ JobFiles job_files(const Job& job, const std::filesystem::path& output) {
 // Runs one job in a child process; returns its outcome (also written next to the output).
 Outcome run_job(const Job& job, const std::filesystem::path& output, double time_limit,
                 const std::string& parameters, const std::string& attempts,
-                const std::string& exports) {
+                const std::string& exports, const std::string& clearance) {
   const JobFiles files = job_files(job, output);
   const std::filesystem::path& report = files.report;
   const std::filesystem::path& log = files.log;
@@ -127,6 +127,7 @@ Outcome run_job(const Job& job, const std::filesystem::path& output, double time
                                     "--quiet"};
   if (!parameters.empty()) words.insert(words.end(), {"--parameters", parameters});
   if (!exports.empty()) words.insert(words.end(), {"--export", exports});
+  if (!clearance.empty()) words.insert(words.end(), {"--clearance", clearance});
   std::vector<char*> argv;
   for (std::string& word : words)
     argv.push_back(word.data());
@@ -240,7 +241,7 @@ Shard parse_shard(const std::string& text) {
 int batch_command(const std::vector<std::string>& args) {
   const CommandLine line(args, {},
                          {"-o", "--jobs", "--body", "--bodies", "--time-limit", "--limit",
-                          "--parameters", "--attempts", "--export", "--shard"});
+                          "--parameters", "--attempts", "--export", "--clearance", "--shard"});
   const std::filesystem::path folder = line.only_positional("pattern folder");
   const auto output_value = line.value("-o");
   if (!output_value) throw UsageError("-o OUTDIR is required");
@@ -265,6 +266,13 @@ int batch_command(const std::vector<std::string>& args) {
     } catch (const std::invalid_argument& error) {
       throw UsageError(std::string("--export: ") + error.what());
     }
+  // Checked here too, and passed to each job's `run` as it was given.
+  const std::string clearance = line.value("--clearance").value_or("");
+  if (line.has("--clearance")) {
+    const double clearance_mm = line.number("--clearance", 0.0);
+    if (!(clearance_mm >= 0.0 && clearance_mm <= 100.0))
+      throw UsageError("--clearance must be between 0 and 100 (mm)");
+  }
   if (!std::filesystem::is_directory(folder)) throw InputError(folder.string() + ": not a folder");
 
   const std::map<std::string, std::string> index = bodies_from_index(folder);
@@ -336,8 +344,8 @@ int batch_command(const std::vector<std::string>& args) {
   const auto worker = [&] {
     for (std::size_t k = next++; k < pending.size(); k = next++) {
       const std::size_t i = pending[k];
-      outcomes[i] =
-          run_job(all[i], output, time_limit, parameters, std::to_string(attempts), export_list);
+      outcomes[i] = run_job(all[i], output, time_limit, parameters, std::to_string(attempts),
+                            export_list, clearance);
       const std::size_t count = ++finished;
       std::lock_guard<std::mutex> lock(print);
       if (terminal) {

@@ -31,7 +31,7 @@ const Command kCommands[] = {
      "[--seed-pieces a,b "
      "--seed-location NAME] "
      "[--order p1,p2,...] [--threads N] [--edge-length M] [--parameters P.json] [--snapshots DIR] "
-     "[--attempts N] [--quiet]",
+     "[--attempts N] [--clearance MM] [--quiet]",
      "Arranges the pattern on the body (default: the bundled mean body) and writes the garment "
      "OBJ\n"
      "(one group per panel, vt = pattern coordinates); --glb also writes the garment and the body\n"
@@ -55,13 +55,14 @@ const Command kCommands[] = {
      "seed, with a longer settle), up to --attempts sessions in all (default 8; 1: a single pass), "
      "the\n"
      "best kept; the report lists every attempt, and a design that cannot fit the body is said so\n"
-     "(cannot_fit) with no attempt. Exit 0 when the garment passes the quality check, 3 when it "
-     "was\n"
-     "written but fails it.",
+     "(cannot_fit) with no attempt. --clearance MM: the post-process repels the cloth from the\n"
+     "body within MM millimetres instead of its 3 mm (the cloth ends up to 0.3 mm nearer), for a\n"
+     "simulator whose collision distance is larger (scripts/blender-drape). Exit 0 when the\n"
+     "garment passes the quality check, 3 when it was written but fails it.",
      garment::cli::run_command},
     {"batch",
      "batch DIR -o OUTDIR [--jobs N] [--body BODY.obj] [--bodies DIR] [--time-limit S] [--limit N] "
-     "[--parameters P.json] [--attempts N] [--export KINDS] [--shard K/N]",
+     "[--parameters P.json] [--attempts N] [--export KINDS] [--clearance MM] [--shard K/N]",
      "Runs `run` on every pattern in DIR, each in its own process with one thread and a time "
      "limit\n"
      "(default 300 s), --jobs at a time (default: the number of cores). Each pattern goes on its "
@@ -74,7 +75,7 @@ const Command kCommands[] = {
      "DIR or lie inside it; jobs die with the batch. Prints a progress bar on a terminal and\n"
      "writes summary.md and summary.json: success\n"
      "rate (clean at the first pass, recovered, failed, designs that cannot fit), failures by\n"
-     "class, time per garment (median, p95, max).\n"
+     "class, time per garment (median, p95, max). --clearance as in `run`.\n"
      "--shard K/N (K 1-based, 1 <= K <= N) runs one part of the batch, for N machines: of the\n"
      "name-sorted patterns (the first --limit of them), those at 0-based positions i with\n"
      "i % N == K - 1; its summary says which shard it is. `summary` merges the shards' OUTDIRs.",
@@ -115,11 +116,12 @@ const Command kCommands[] = {
      "cloth crossing, no fold, strain <= 20 %, seam gap <= 5 mm, nothing misplaced. Exit 0\n"
      "when ok, 3 when not. --json prints one object.",
      garment::cli::check_command},
-    {"flat", "flat PATTERN.json -o OUT.obj [--edge-length M]",
+    {"flat", "flat PATTERN.json -o OUT.obj [--edge-length M] [--export KINDS]",
      "Writes the pieces flat where the pattern file places them (world = R(x, y, 0) +\n"
      "translation, R = Rz.Ry.Rx of the panel rotation), unsimulated: the state GarmentCode's\n"
      "simulator starts from, the reference to compare with. OBJ as exported (one group per\n"
-     "panel, vt = pattern coordinates, metres).",
+     "panel, vt = pattern coordinates, metres). --export as in `run` (sewing-obj: the start\n"
+     "for scripts/blender-drape).",
      garment::cli::flat_command},
     {"seed",
      "seed PATTERN.json [--body BODY.obj] [--json] [-o SEED.obj] [--seed-pieces a,b "

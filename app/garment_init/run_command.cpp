@@ -62,10 +62,10 @@ std::vector<int> piece_indices(const Garment& garment, const std::vector<std::st
 }  // namespace
 
 int run_command(const std::vector<std::string>& args) {
-  const CommandLine line(
-      args, {"--quiet"},
-      {"--body", "-o", "--glb", "--export", "--report", "--seed-pieces", "--seed-location",
-       "--order", "--threads", "--edge-length", "--snapshots", "--parameters", "--attempts"});
+  const CommandLine line(args, {"--quiet"},
+                         {"--body", "-o", "--glb", "--export", "--report", "--seed-pieces",
+                          "--seed-location", "--order", "--threads", "--edge-length", "--snapshots",
+                          "--parameters", "--attempts", "--clearance"});
   const std::string pattern_path = line.only_positional("pattern file");
   const auto output = line.value("-o");
   if (!output) throw UsageError("-o OUT.obj is required");
@@ -91,6 +91,9 @@ int run_command(const std::vector<std::string>& args) {
   const auto report = line.value("--report");
   const auto snapshots = line.value("--snapshots");
   const auto parameters = line.value("--parameters");
+  const double clearance_mm = line.number("--clearance", 0.0);
+  if (!(clearance_mm >= 0.0 && clearance_mm <= 100.0))
+    throw UsageError("--clearance must be between 0 and 100 (mm)");
   std::vector<SewnExport> exports;
   if (const auto list = line.value("--export")) try {
       exports = parse_sewn_exports(*list);
@@ -115,6 +118,7 @@ int run_command(const std::vector<std::string>& args) {
   const auto start = std::chrono::steady_clock::now();
   SessionOptions options;
   if (parameters) options.arrangement = load_parameters(*parameters);
+  if (line.has("--clearance")) options.arrangement.clearance = clearance_mm / 1000.0;
   const std::shared_ptr<const Scene> scene = load_scene(pattern_path, body_path, scene_options);
   for (const std::string& warning : scene->body->warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());

@@ -91,6 +91,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_fold_iterations", p.post_process_fold_iterations);
   visit("post_process_fold_bending_factor", p.post_process_fold_bending_factor);
   visit("post_process_body_buffer", p.post_process_body_buffer);
+  visit("clearance", p.clearance);
   visit("post_process_edge_repulsion_factor", p.post_process_edge_repulsion_factor);
   visit("post_process_leg_separation_factor", p.post_process_leg_separation_factor);
   visit("post_process_own_layer_repulsion_factor", p.post_process_own_layer_repulsion_factor);
@@ -243,6 +244,7 @@ const std::map<std::string_view, Range>& parameter_ranges() {
       {"post_process_fold_iterations", at_least(0, kIterations, "iterations; 0: off")},
       {"post_process_fold_bending_factor", above(0, kFactor)},
       {"post_process_body_buffer", above(0, 0.1, "m")},
+      {"clearance", at_least(0, 0.1, "m; 0: the post-process's body buffer alone")},
       {"post_process_edge_repulsion_factor", at_least(0, kFactor, "0: off")},
       {"post_process_leg_separation_factor", at_least(0, kFactor, "0: off")},
       {"post_process_own_layer_repulsion_factor", at_least(0, kFactor, "0: off")},

@@ -1,5 +1,6 @@
 #include "engine/post_process/post_process.h"
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <numeric>
@@ -205,7 +206,8 @@ PostProcessReport post_process(ArrangementContext& context,
   context.sewing->set_stiffness(energy.sewing_stiffness * parameters.post_process_sewing_factor);
   context.body_repulsion->set_stiffness(energy.body_repulsion_stiffness *
                                         parameters.post_process_repulsion_factor);
-  context.body_repulsion->set_buffer(parameters.post_process_body_buffer);
+  const double body_buffer = std::max(parameters.post_process_body_buffer, parameters.clearance);
+  context.body_repulsion->set_buffer(body_buffer);
   context.gravity->set_acceleration(energy.gravity * parameters.post_process_gravity_factor);
   context.stretch->set_strain_limit(parameters.post_process_strain_limit,
                                     parameters.post_process_strain_limit_factor);
@@ -223,7 +225,7 @@ PostProcessReport post_process(ArrangementContext& context,
         context.body, mesh.edges,
         energy.body_repulsion_stiffness * parameters.post_process_repulsion_factor *
             parameters.post_process_edge_repulsion_factor,
-        parameters.post_process_body_buffer));
+        body_buffer));
   // Each leg tube keeps to its side of the plane the buffer's distance, as from the body: the two
   // meet with twice that between them.
   if (parameters.post_process_leg_separation_factor > 0.0) {
@@ -234,7 +236,7 @@ PostProcessReport post_process(ArrangementContext& context,
           context.landmarks.centre_x,
           energy.body_repulsion_stiffness * parameters.post_process_repulsion_factor *
               parameters.post_process_leg_separation_factor,
-          parameters.post_process_body_buffer));
+          body_buffer));
   }
 
   // Layers in arrangement order: the seed, then each batch, outside everything before it. Vertices
