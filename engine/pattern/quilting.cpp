@@ -42,6 +42,11 @@ constexpr double kLineClearance = 1e-7;  // metres
 constexpr double kCornerClearance = 0.004;  // metres, at most kCornerClearanceOfCell of a cell
 constexpr double kCornerClearanceOfCell = 0.04;
 
+// A piece smaller than this (of a cell's area) joins the neighbour it shares the longest cut
+// with: the mesher cannot shape a piece a few centimetres round (it refuses it), and a sliver
+// carries no cloth.
+constexpr double kSmallestPiece = 0.1;
+
 // Where two sides of a stitch were cut within this length of each other, one vertex serves both
 // (the stitch pairs them), rather than two vertices a sliver apart.
 constexpr double kStitchMergeLength = 0.003;  // metres
@@ -266,6 +271,99 @@ std::vector<Piece> cut_along(std::vector<Piece> pieces, int axis, double cell, i
   return pieces;
 }
 
+// Joins piece `small` to `other` across their shared cut segment (small's segment i is other's
+// segment j reversed), and folds away the spikes left where more of that cut was shared. Returns
+// nothing when the two still touch elsewhere (the union would hold a slit or a hole).
+std::optional<Piece> joined(const Piece& small, std::size_t i, const Piece& other, std::size_t j) {
+  Piece result;
+  result.row = other.row;
+  result.column = other.column;
+  for (const auto& [piece, shared] : {std::pair{&small, i}, std::pair{&other, j}}) {
+    const std::size_t n = piece->points.size();
+    for (std::size_t k = 1; k < n; ++k) {
+      result.points.push_back(piece->points[(shared + k) % n]);
+      result.segments.push_back(piece->segments[(shared + k) % n]);
+    }
+  }
+  for (bool folded = true; folded && result.points.size() > 3;) {
+    folded = false;
+    const std::size_t n = result.points.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t before = (k + n - 1) % n, after = (k + 1) % n;
+      if (result.points[before] != result.points[after]) continue;
+      // before → k → after is a spike: there and back along a cut both pieces shared.
+      result.segments[before] = result.segments[after];
+      const std::size_t first = std::min(k, after), second = std::max(k, after);
+      result.points.erase(result.points.begin() + second);
+      result.segments.erase(result.segments.begin() + second);
+      result.points.erase(result.points.begin() + first);
+      result.segments.erase(result.segments.begin() + first);
+      folded = true;
+      break;
+    }
+  }
+  std::map<std::pair<std::array<double, 2>, std::array<double, 2>>, int> cuts;
+  const std::size_t n = result.points.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (result.segments[k].edge >= 0) continue;
+    std::array<double, 2> from{result.points[k].x(), result.points[k].y()};
+    std::array<double, 2> to{result.points[(k + 1) % n].x(), result.points[(k + 1) % n].y()};
+    if (to < from) std::swap(from, to);
+    if (++cuts[{from, to}] > 1) return std::nullopt;
+  }
+  return result;
+}
+
+// Merges every piece smaller than `smallest` (m²) into the neighbour it shares the longest cut
+// segment with, smallest first.
+void merge_small_pieces(std::vector<Piece>& pieces, double smallest) {
+  std::vector<std::size_t> refused;  // pieces no neighbour could take
+  while (pieces.size() > 1) {
+    std::optional<std::size_t> small;
+    double small_area = smallest;
+    for (std::size_t a = 0; a < pieces.size(); ++a) {
+      const double area = std::abs(polygon_signed_area(pieces[a].points));
+      if (area < small_area && std::find(refused.begin(), refused.end(), a) == refused.end()) {
+        small = a;
+        small_area = area;
+      }
+    }
+    if (!small) return;
+    const Piece& piece = pieces[*small];
+    const std::size_t n = piece.points.size();
+    std::optional<Piece> best;
+    std::size_t best_other = 0;
+    double best_length = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (piece.segments[i].edge >= 0) continue;
+      const Vector2d& p = piece.points[i];
+      const Vector2d& q = piece.points[(i + 1) % n];
+      if ((q - p).norm() <= best_length) continue;
+      for (std::size_t b = 0; b < pieces.size(); ++b) {
+        if (b == *small) continue;
+        const std::size_t m = pieces[b].points.size();
+        for (std::size_t j = 0; j < m; ++j)
+          if (pieces[b].segments[j].edge < 0 && pieces[b].points[j] == q &&
+              pieces[b].points[(j + 1) % m] == p) {
+            if (auto union_piece = joined(piece, i, pieces[b], j)) {
+              best = std::move(union_piece);
+              best_other = b;
+              best_length = (q - p).norm();
+            }
+          }
+      }
+    }
+    if (!best) {
+      refused.push_back(*small);
+      continue;
+    }
+    pieces[best_other] = std::move(*best);
+    pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(*small));
+    for (std::size_t& r : refused)
+      if (r > *small) --r;
+  }
+}
+
 // A maximal stretch of a piece's outline along one original edge or one cut.
 struct Run {
   int edge = -1, cut = -1;
@@ -275,9 +373,10 @@ struct Run {
 
 std::vector<Run> runs_of(const Piece& piece) {
   const std::size_t n = piece.segments.size();
+  // Each cut segment is a run of its own: after merge_small_pieces two segments of one cut line
+  // may follow each other, each sewn to another neighbour.
   const auto same_source = [&](std::size_t a, std::size_t b) {
-    return piece.segments[a].edge == piece.segments[b].edge &&
-           piece.segments[a].cut == piece.segments[b].cut;
+    return piece.segments[a].edge >= 0 && piece.segments[a].edge == piece.segments[b].edge;
   };
   std::size_t first = 0;
   while (first < n && same_source(first, (first + n - 1) % n))
@@ -362,29 +461,38 @@ void match_divisions(Divisions& a, Divisions& b, bool right_wrong, double length
     if (f > 0.0 && f < 1.0) items.push_back({right_wrong ? f : 1.0 - f, f, false});
   std::sort(items.begin(), items.end(), [](const Item& x, const Item& y) { return x.key < y.key; });
   const double tolerance = kStitchMergeLength / std::max({length_a, length_b, 1e-9});
-  struct Cluster {
-    double key;
-    std::optional<double> a, b;
-  };
-  // A cluster is at most two neighbours in the sorted list, one of each side: the divisions of
-  // both sides then keep one order.
-  std::vector<Cluster> clusters;
+  // A cluster is one division of each side, or of one side alone; its items are neighbours in the
+  // sorted list, so the divisions of both sides keep one order. An item pairs with the nearer of
+  // its neighbours: two cuts of one side near one cut of the other would otherwise leave the
+  // farther one paired and the nearer one mapped onto the other side a hair from it.
+  std::vector<std::vector<Item>> clusters;
   for (const Item& item : items) {
-    Cluster* last = clusters.empty() ? nullptr : &clusters.back();
-    const bool joins = last && item.key - last->key <= tolerance &&
-                       !(item.on_a ? last->a.has_value() : last->b.has_value());
-    if (!joins) {
-      clusters.push_back({item.key, {}, {}});
-      last = &clusters.back();
+    if (!clusters.empty()) {
+      std::vector<Item>& last = clusters.back();
+      if (last.size() == 1 && last[0].on_a != item.on_a && item.key - last[0].key <= tolerance) {
+        last.push_back(item);
+        continue;
+      }
+      if (last.size() == 2 && last[0].on_a == item.on_a &&
+          item.key - last[1].key < last[1].key - last[0].key) {
+        const Item nearer = last[1];
+        last.pop_back();
+        clusters.push_back({nearer, item});
+        continue;
+      }
     }
-    (item.on_a ? last->a : last->b) = item.value;
+    clusters.push_back({item});
   }
   a = {0.0};
   b = {0.0, 1.0};
-  for (const Cluster& cluster : clusters) {
-    const double on_a = cluster.a ? *cluster.a : (right_wrong ? *cluster.b : 1.0 - *cluster.b);
+  const auto mapped = [&](double f) { return right_wrong ? f : 1.0 - f; };
+  for (const std::vector<Item>& cluster : clusters) {
+    std::optional<double> own_a, own_b;
+    for (const Item& item : cluster)
+      (item.on_a ? own_a : own_b) = item.value;
+    const double on_a = own_a ? *own_a : mapped(*own_b);
     a.push_back(on_a);
-    b.push_back(cluster.b ? *cluster.b : (right_wrong ? on_a : 1.0 - on_a));
+    b.push_back(own_b ? *own_b : mapped(on_a));
   }
   a.push_back(1.0);
   std::sort(b.begin(), b.end());
@@ -435,6 +543,7 @@ QuiltResult quilt(const Pattern& pattern, const QuiltOptions& options) {
         cut_along(std::move(pieces[p]), 0, options.cell, next_cut_id, place, pattern.source);
     pieces[p] =
         cut_along(std::move(pieces[p]), 1, options.cell, next_cut_id, place, pattern.source);
+    merge_small_pieces(pieces[p], kSmallestPiece * options.cell * options.cell);
     if (pieces[p].size() > 1)
       for (const Piece& piece : pieces[p])
         result.smallest_piece_area =

@@ -101,10 +101,16 @@ class QuiltingTest : public QObject {
     const Garment garment = build_garment(output);
     QVERIFY(garment.vertex_count() > 0);
 
-    // The cells tile each panel: their areas add up to the panel's.
+    // The cells tile each panel: their areas add up to the panel's. No sliver is left alone.
     std::map<std::string, double> area;
-    for (const Panel& piece : output.panels)
-      area[original_name(piece.name)] += std::abs(build_outline(piece).signed_area);
+    for (const Panel& piece : output.panels) {
+      const double piece_area = std::abs(build_outline(piece).signed_area);
+      area[original_name(piece.name)] += piece_area;
+      const bool cut = piece.name.find("__") != std::string::npos;  // not a whole small panel
+      QVERIFY2(
+          !cut || piece_area > 0.05 * cell * cell,
+          qPrintable(QString("%1: %2 m²").arg(QString::fromStdString(piece.name)).arg(piece_area)));
+    }
     for (const Panel& panel : original.panels) {
       const double expected = std::abs(build_outline(panel).signed_area);
       QVERIFY2(std::abs(area[panel.name] - expected) < 1e-3 * expected,
