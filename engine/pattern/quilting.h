@@ -1,9 +1,11 @@
 #pragma once
 // Quilting: a pattern cut into many small pieces, for benchmarks and tests at scale (issue 43).
 // Every panel is cut by a grid of lines `cell` apart in its own 2D frame into cells (the connected
-// parts of panel ∩ grid square); neighbouring cells are sewn along each cut, and every original
-// stitch (darts included) is split so that each of its sub-edges is sewn to the matching part of
-// the other side. Output: a GarmentCode specification that parse_pattern accepts.
+// parts of panel ∩ grid square; each line moved by up to 0.3 cell, away from corners and slivers,
+// and a cell under 1/10 of a square joined to a neighbour); neighbouring cells are sewn along each
+// cut, and every original stitch (darts included) is split so that each of its sub-edges is sewn
+// to the matching part of the other side. Output: a GarmentCode specification that parse_pattern
+// accepts.
 //
 // Shapes: a cell of panel NAME is named NAME__rRcC (row R, column C of the grid; a letter is
 // appended when panel ∩ square has several parts), keeps the panel's translation, rotation and
