@@ -22,6 +22,7 @@ int summary_command(const std::vector<std::string>& args);
 int body_command(const std::vector<std::string>& args);
 int check_command(const std::vector<std::string>& args);
 int flat_command(const std::vector<std::string>& args);
+int quilt_command(const std::vector<std::string>& args);
 int seed_command(const std::vector<std::string>& args);
 int train_classifier_command(const std::vector<std::string>& args);
 int classify_eval_command(const std::vector<std::string>& args);

@@ -123,6 +123,14 @@ const Command kCommands[] = {
      "panel, vt = pattern coordinates, metres). --export as in `run` (sewing-obj: the start\n"
      "for scripts/blender-drape).",
      garment::cli::flat_command},
+    {"quilt", "quilt PATTERN.json --cell CM [--keep NAMES] -o OUT_specification.json",
+     "Cuts every panel into cells of a grid CM centimetres apart (in the panel's own plane, each\n"
+     "line moved by up to 0.3 cell to avoid slivers), sews neighbouring cells along every cut and\n"
+     "splits the pattern's stitches and darts to match, so that each edge stays in one stitch:\n"
+     "a GarmentCode specification with many pieces, for benchmarks and tests. A cell of panel\n"
+     "NAME is NAME__rRcC and sits where its part of the panel sat. --keep a,b leaves whole the\n"
+     "panels whose name contains a or b (trims: waistband,collar,cuff). Prints the piece count.",
+     garment::cli::quilt_command},
     {"seed",
      "seed PATTERN.json [--body BODY.obj] [--json] [-o SEED.obj] [--seed-pieces a,b "
      "--seed-location NAME] [--weights FILE] [--edge-length M] [--parameters P.json]",

@@ -150,6 +150,8 @@ class OutputsTest : public QObject {
     QTest::newRow("seed -o BODY") << QStringList{"seed", "p.json", "--body", "b.obj", "-o", "b.obj"}
                                   << "b.obj";
     QTest::newRow("flat -o PATTERN") << QStringList{"flat", "p.json", "-o", "p.json"} << "p.json";
+    QTest::newRow("quilt -o PATTERN")
+        << QStringList{"quilt", "p.json", "--cell", "10", "-o", "./p.json"} << "p.json";
   }
   void refuses_an_output_that_is_an_input() {
     QFETCH(QStringList, arguments);
@@ -203,6 +205,10 @@ class OutputsTest : public QObject {
         << "does not exist";
     QTest::newRow("flat -o in a missing folder")
         << QStringList{"flat", "p.json", "-o", "missing/f.obj"} << "missing/f.obj"
+        << "does not exist";
+    QTest::newRow("quilt -o in a missing folder")
+        << QStringList{"quilt", "p.json", "--cell", "10", "-o", "missing/q.json"}
+        << "missing/q.json"
         << "does not exist";
     QTest::newRow("train-classifier -o inside DATA_DIR")
         << QStringList{"train-classifier", "sub", "-o", "sub/weights.json"} << "sub/weights.json"
