@@ -35,6 +35,7 @@
 #include "engine/seeding/scene.h"
 #include "engine/session/session.h"
 #include "ui/main_window.h"
+#include "ui/opengl_format.h"
 #include "ui/studio_controller.h"
 
 namespace {
@@ -160,7 +161,9 @@ bool run_studio(const Subject& garment, Timing& timing, std::string& error) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ui::use_opengl_core_profile();  // as garment-studio
   QApplication application(argc, argv);
+  ui::drop_multisampling_on_software_opengl();
   int repeats = 3;
   std::vector<Subject> garments;
   const QStringList arguments = QCoreApplication::arguments();

@@ -4,7 +4,6 @@
 #include <QDropEvent>
 #include <QLineF>
 #include <QMouseEvent>
-#include <QOffscreenSurface>
 #include <QOpenGLContext>
 #include <QOpenGLFramebufferObject>
 #include <QOpenGLFunctions>
@@ -16,6 +15,7 @@
 
 #include "engine/core/mesh_geometry.h"
 #include "ui/garment_diagnostics_worker.h"
+#include "ui/opengl_format.h"
 #include "ui/piece_drag.h"
 
 namespace garment::ui {
@@ -107,23 +107,6 @@ void set_marker_layout(QOpenGLFunctions_3_3_Core& gl) {
 
 // Whether OpenGL is Mesa's software rasteriser (llvmpipe, softpipe: Xvfb, machines without a GPU
 // driver), asked once of a throw-away context.
-static bool software_renderer() {
-  static const bool software = [] {
-    QOpenGLContext context;
-    context.setFormat(QSurfaceFormat::defaultFormat());
-    QOffscreenSurface surface;
-    surface.setFormat(context.format());
-    surface.create();
-    if (!context.create() || !context.makeCurrent(&surface)) return false;
-    const auto* renderer =
-        reinterpret_cast<const char*>(context.functions()->glGetString(GL_RENDERER));
-    const QString name = renderer ? QString::fromLatin1(renderer) : QString();
-    context.doneCurrent();
-    return name.contains("llvmpipe") || name.contains("softpipe") || name.contains("Software");
-  }();
-  return software;
-}
-
 AvatarView::AvatarView(QWidget* parent) : QOpenGLWidget(parent) {
   QSurfaceFormat format = QSurfaceFormat::defaultFormat();
   format.setVersion(3, 3);
@@ -131,7 +114,7 @@ AvatarView::AvatarView(QWidget* parent) : QOpenGLWidget(parent) {
   format.setDepthBufferSize(24);
   // Multisampling costs a software rasteriser several times the frame time, and live updates
   // need the frames (an overriding GARMENT_STUDIO_SAMPLES is left alone).
-  if (!qEnvironmentVariableIsSet("GARMENT_STUDIO_SAMPLES") && software_renderer())
+  if (!qEnvironmentVariableIsSet("GARMENT_STUDIO_SAMPLES") && software_opengl())
     format.setSamples(0);
   setFormat(format);
   setMinimumSize(200, 200);

@@ -142,8 +142,8 @@ class SessionThread : public QThread {
   // (30 a second) took 3× the solver's processor time on the demo (bench_studio); on a GPU the
   // pace stays near SessionOptions::snapshot_interval.
   static constexpr double kLiveDrawShare = 0.05;
-  // But a frame at least every second (seconds), so that the view stays live however slow it is.
-  static constexpr double kMaxLivePause = 1.0;
+  // But a frame at least every 2 s (seconds), so that the view stays live however slow it is.
+  static constexpr double kMaxLivePause = 2.0;
 
  signals:
   // Emitted on the thread that owns this object (the GUI thread).

@@ -41,6 +41,7 @@
 int main(int argc, char** argv) {
   garment::ui::use_opengl_core_profile();
   QApplication application(argc, argv);
+  garment::ui::drop_multisampling_on_software_opengl();
   QApplication::setApplicationName("garment-studio");
   QApplication::setOrganizationName("garment-studio");
 

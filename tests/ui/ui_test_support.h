@@ -184,12 +184,14 @@ inline void show_flat_before_sphere(ui::AvatarView& view, std::shared_ptr<const 
     }                                                                                         \
   } while (false)
 
-// QTEST_MAIN with the OpenGL 3.3 core default format (it must precede the QApplication) and
+// QTEST_MAIN with the OpenGL 3.3 core default format (it must precede the QApplication; as
+// garment-studio, without multisampling on a software rasteriser) and
 // settings in a temporary directory, so that tests never read or write the user's settings.
 #define GARMENT_UI_TEST_MAIN(TestClass)                                                        \
   int main(int argc, char** argv) {                                                            \
     garment::ui::use_opengl_core_profile();                                                    \
     QApplication application(argc, argv);                                                      \
+    garment::ui::drop_multisampling_on_software_opengl();                                      \
     QTemporaryDir settings_directory;                                                          \
     QSettings::setDefaultFormat(QSettings::IniFormat);                                         \
     QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, settings_directory.path()); \
