@@ -221,7 +221,10 @@ void SessionThread::run() {
   Observer observer(*this);
   for (;;) {
     // The run has stopped (paused, done, stepped): the window shows where it stands.
-    if (update_held_ && !wantsToStep()) publishUpdate(false);
+    if (update_held_ && !wantsToStep()) {
+      publishUpdate(false);
+      publishState();
+    }
     std::deque<Command> commands;
     {
       std::unique_lock lock(mutex_);
@@ -271,16 +274,15 @@ void SessionThread::stepOnce(Observer& observer) {
     history_ << checkpointLabel(ran);
     if (session_->done()) running_ = false;
   }
-  // Between the phases of a run, the update is paced as the live ones are (a phase can take
-  // milliseconds): held when not due, and sent when the run stops.
-  if (running_ && !session_->done()) {
-    if (startPacedUpdate())
-      publishUpdate(true);
-    else
-      update_held_ = true;
-  } else {
-    publishUpdate(false);
+  // Between the phases of a run, the update and the state are paced as the live updates are (a
+  // phase can take milliseconds, and every state the window shows costs it a repaint): held when
+  // not due, and sent when the run stops. A state is whole (the history entire, the order), so
+  // the window loses nothing by skipping one.
+  if (running_ && !session_->done() && !startPacedUpdate()) {
+    update_held_ = true;
+    return;
   }
+  publishUpdate(running_ && !session_->done());
   publishState();
 }
 

@@ -232,7 +232,7 @@ class SessionThread : public QThread {
   static std::int64_t steadyNanoseconds();
 
   // Worker thread only.
-  bool update_held_ = false;  // a paced update between phases was not sent (not due)
+  bool update_held_ = false;  // a paced update and state between phases not sent (not due)
   std::shared_ptr<const Scene> scene_;
   std::shared_ptr<Session> session_;  // shared with the last fix's attempts
   // The scene's quality checker, built when the first verdict or report needs it and kept with the
