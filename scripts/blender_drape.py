@@ -42,9 +42,9 @@ def parse_arguments():
                         help="bending stiffness (Blender's default 0.5)")
     # Blender's default 0.3 kg a vertex makes a garment of 2,000 vertices weigh 600 kg: the
     # springs give way and the cloth sinks into the body; 10 g did not do either (gc_0000: 460
-    # vertices inside). 1 g (about 3.2 kg/m² at the 2 cm mesh) kept 10 of the 15 shared garments
-    # clean before Blender clean. 0.1 g, about 320 g/m² (a denim), keeps the cloth nearly where
-    # the arrangement put it: gc_0006, gc_0016 and gc_0024 stayed clean (docs/blender-drape.md).
+    # vertices inside). 1 g (3.2 to 3.8 kg/m² at the 2 cm mesh) kept 10 of the 15 shared garments
+    # clean before Blender clean. 0.1 g, 320 to 380 g/m² (a denim), sags and slides less:
+    # gc_0006, gc_0016 and gc_0024 stayed clean too (docs/blender-drape.md).
     parser.add_argument("--mass", type=float, default=0.0001,
                         help="vertex mass, kg (default 0.0001; Blender's 0.3)")
     # Off in Blender's default; without it, at 0.1 g a vertex, gc_0044's two flared trouser hems
@@ -62,7 +62,7 @@ def parse_arguments():
     # Blender's "Single Sided": the body pushes cloth out along its normals (the bodies are closed
     # meshes with outward normals).
     parser.add_argument("--single-sided", action="store_true",
-                        help="body collision acts along the body's normals (Blender's Single Sided)")
+                        help="body collision along the body's normals (Blender's Single Sided)")
     # The cloth's collision friction and the body's cloth friction (Blender's defaults 5 and 5).
     parser.add_argument("--friction", type=float, default=5.0,
                         help="cloth-body friction, the cloth's and the body's (Blender's 5)")
