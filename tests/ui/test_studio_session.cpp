@@ -164,16 +164,20 @@ class StudioSessionTest : public QObject, test::StudioHarness {
     };
     std::vector<Paced> paced;
     bool done = false, ready = false;
-    connect(&thread, &ui::SessionThread::updated, this, [&](const ui::SessionUpdate& update) {
+    // The receiver of everything below, destroyed before the locals it refers to: a drawing
+    // timer or an update still queued when the test returns dies with it (with `this` as the
+    // receiver, one fired in the next test, into this one's freed stack: ASan, CI).
+    QObject gui;
+    connect(&thread, &ui::SessionThread::updated, &gui, [&](const ui::SessionUpdate& update) {
       if (update.phase == Phase::Done) done = true;
       if (!update.paced) return;
       const qint64 arrived = clock.elapsed();
-      QTimer::singleShot(kDrawMs, this, [&, arrived] {
+      QTimer::singleShot(kDrawMs, &gui, [&, arrived] {
         paced.push_back({arrived, clock.elapsed()});
         thread.acknowledgeUpdate();
       });
     });
-    connect(&thread, &ui::SessionThread::stateChanged, this,
+    connect(&thread, &ui::SessionThread::stateChanged, &gui,
             [&](const ui::SessionState& state) { ready = state.has_session; });
     thread.openScene(scene->garment, scene->body,
                      test::sanitizer_build() ? test::quick_options() : SessionOptions{});
