@@ -140,9 +140,15 @@ void Assembler::prepare(const std::vector<Potential*>& potentials, const ActiveS
 
 double Assembler::accumulate(const Positions& x, int iteration, bool with_quadratic_energy,
                              bool* landscape_changed) {
-  bool changed = false;
-  for (Potential* potential : scattering_)
-    changed = potential->begin_evaluation(x, iteration) || changed;
+  // Potentials refresh their contacts side by side: the post-process holds one self repulsion
+  // per layer (and one of each layer's own cloth), each rebuilding its own closest-triangle grid,
+  // which is serial within a potential. Each refresh reads x and writes only its own potential's
+  // state, so the result does not depend on which thread ran it.
+  std::vector<char> refreshed(scattering_.size(), 0);
+  tbb::parallel_for(std::size_t{0}, scattering_.size(), [&](std::size_t p) {
+    refreshed[p] = scattering_[p]->begin_evaluation(x, iteration) ? 1 : 0;
+  });
+  const bool changed = std::find(refreshed.begin(), refreshed.end(), 1) != refreshed.end();
   if (landscape_changed) *landscape_changed = changed;
 
   const int blocks = block_count_;
