@@ -19,6 +19,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <sstream>
 #include <thread>
 
 #include "batch_summary.h"
@@ -31,6 +32,7 @@
 #include "engine/core/input_file.h"
 #include "engine/core/text.h"
 #include "engine/io/sewn_export.h"
+#include "engine/pattern/outfit.h"
 #include "engine/pattern/pattern_files.h"
 #include "engine/recovery/recovery.h"
 #include "output_plan.h"
@@ -39,10 +41,54 @@ namespace garment::cli {
 namespace {
 
 struct Job {
-  std::filesystem::path pattern;
+  std::vector<std::filesystem::path> patterns;  // one, or an outfit's (the first innermost)
   std::filesystem::path body;
-  std::string name;  // file stem
+  std::string name;  // file stem; an outfit's garment names joined by '+'
 };
+
+// --outfits LIST: an outfit per line, its pattern files separated by spaces, the first innermost,
+// and optionally a body (a file ending in .obj) for it; paths relative to the list's folder;
+// blank lines and lines starting with # are skipped.
+std::vector<Job> outfit_jobs(const std::filesystem::path& list,
+                             const std::filesystem::path& fallback_body) {
+  std::vector<Job> jobs;
+  std::istringstream lines(read_file(list));
+  std::string text;
+  for (int number = 1; std::getline(lines, text); ++number) {
+    std::istringstream words(text);
+    std::string word;
+    Job job{{}, fallback_body, {}};
+    bool body_given = false;
+    const std::string place = list.string() + ", line " + std::to_string(number);
+    while (words >> word) {
+      if (job.patterns.empty() && !body_given && word.starts_with("#")) break;
+      const std::filesystem::path path = list.parent_path() / word;
+      if (path.extension() == ".obj") {
+        if (body_given) throw InputError(place + ": two bodies ('" + printable(word) + "')");
+        job.body = path;
+        body_given = true;
+        continue;
+      }
+      job.patterns.push_back(path);
+      if (!job.name.empty()) job.name += '+';
+      job.name += outfit_garment_name(path);
+    }
+    if (job.patterns.empty()) {
+      if (body_given) throw InputError(place + ": a body and no pattern");
+      continue;
+    }
+    for (const std::filesystem::path& path : job.patterns)
+      if (!std::filesystem::exists(path))
+        throw InputError(place + ": no pattern file " + path.string());
+    if (!std::filesystem::exists(job.body))
+      throw InputError(place + ": no body file " + job.body.string());
+    for (const Job& other : jobs)
+      if (other.name == job.name)
+        throw InputError(place + ": the outfit " + job.name + " is already in the list");
+    jobs.push_back(std::move(job));
+  }
+  return jobs;
+}
 
 // index.json of GarmentCode datasets: file name → the body it was made for.
 std::map<std::string, std::string> bodies_from_index(const std::filesystem::path& folder) {
@@ -111,20 +157,11 @@ Outcome run_job(const Job& job, const std::filesystem::path& output, double time
   // Built before the fork: the child of a threaded process may only make async-signal-safe calls
   // until execv (another thread may hold the allocator's lock at the fork).
   const std::string exe = self_executable().string();
-  std::vector<std::string> words = {exe,
-                                    "run",
-                                    job.pattern.string(),
-                                    "--body",
-                                    job.body.string(),
-                                    "-o",
-                                    files.obj.string(),
-                                    "--report",
-                                    report.string(),
-                                    "--threads",
-                                    "1",
-                                    "--attempts",
-                                    attempts,
-                                    "--quiet"};
+  std::vector<std::string> words = {exe, "run"};
+  for (const std::filesystem::path& pattern : job.patterns)
+    words.push_back(pattern.string());
+  words.insert(words.end(), {"--body", job.body.string(), "-o", files.obj.string(), "--report",
+                             report.string(), "--threads", "1", "--attempts", attempts, "--quiet"});
   if (!parameters.empty()) words.insert(words.end(), {"--parameters", parameters});
   if (!exports.empty()) words.insert(words.end(), {"--export", exports});
   if (!clearance.empty()) words.insert(words.end(), {"--clearance", clearance});
@@ -239,10 +276,16 @@ Shard parse_shard(const std::string& text) {
 }  // namespace
 
 int batch_command(const std::vector<std::string>& args) {
-  const CommandLine line(args, {},
-                         {"-o", "--jobs", "--body", "--bodies", "--time-limit", "--limit",
-                          "--parameters", "--attempts", "--export", "--clearance", "--shard"});
-  const std::filesystem::path folder = line.only_positional("pattern folder");
+  const CommandLine line(
+      args, {},
+      {"-o", "--jobs", "--body", "--bodies", "--time-limit", "--limit", "--parameters",
+       "--attempts", "--export", "--clearance", "--shard", "--outfits"});
+  const auto outfits = line.value("--outfits");
+  if (outfits && !line.positional().empty())
+    throw UsageError("a pattern folder or --outfits LIST, not both");
+  const std::filesystem::path folder =
+      outfits ? std::filesystem::path()
+              : std::filesystem::path(line.only_positional("pattern folder"));
   const auto output_value = line.value("-o");
   if (!output_value) throw UsageError("-o OUTDIR is required");
   const std::filesystem::path output = *output_value;
@@ -273,15 +316,22 @@ int batch_command(const std::vector<std::string>& args) {
     if (!(clearance_mm >= 0.0 && clearance_mm <= 100.0))
       throw UsageError("--clearance must be between 0 and 100 (mm)");
   }
-  if (!std::filesystem::is_directory(folder)) throw InputError(folder.string() + ": not a folder");
+  if (!outfits && !std::filesystem::is_directory(folder))
+    throw InputError(folder.string() + ": not a folder");
 
-  const std::map<std::string, std::string> index = bodies_from_index(folder);
-  const std::filesystem::path bodies =
-      line.value("--bodies").value_or((folder / ".." / ".." / "bodies").string());
   const std::filesystem::path fallback_body = line.value("--body").value_or(default_body_path());
   std::vector<Job> all;
-  for (const auto& pattern : pattern_files(folder)) {
-    Job job{pattern, fallback_body, pattern.stem().string()};
+  if (outfits) {
+    all = outfit_jobs(*outfits, fallback_body);
+    if (limit > 0 && static_cast<int>(all.size()) > limit) all.resize(limit);
+  }
+  const std::map<std::string, std::string> index =
+      outfits ? std::map<std::string, std::string>() : bodies_from_index(folder);
+  const std::filesystem::path bodies =
+      line.value("--bodies").value_or((folder / ".." / ".." / "bodies").string());
+  for (const auto& pattern :
+       outfits ? std::vector<std::filesystem::path>() : pattern_files(folder)) {
+    Job job{{pattern}, fallback_body, pattern.stem().string()};
     if (const auto it = index.find(pattern.filename().string());
         it != index.end() && !line.has("--body")) {
       job.body = bodies / (it->second + ".obj");
@@ -292,7 +342,8 @@ int batch_command(const std::vector<std::string>& args) {
     all.push_back(job);
     if (limit > 0 && static_cast<int>(all.size()) >= limit) break;
   }
-  if (all.empty()) throw InputError(folder.string() + ": no pattern files");
+  if (all.empty())
+    throw InputError(outfits ? *outfits + ": no outfit" : folder.string() + ": no pattern files");
   // Round robin over the name-sorted list rather than contiguous blocks: neighbouring patterns of
   // a dataset tend to be alike (gc_0000..), so each shard gets a similar mix and a similar time.
   // A shard may be empty (more shards than patterns): it writes an empty summary, so that the
@@ -308,10 +359,16 @@ int batch_command(const std::vector<std::string>& args) {
   // The output folder may not be the pattern folder or inside it: its reports are .json files,
   // read back as patterns by the next run of the batch.
   OutputPlan plan;
-  plan.input_folder("DIR", folder);
+  if (outfits)
+    plan.input("--outfits", *outfits);
+  else
+    plan.input_folder("DIR", folder);
   if (!parameters.empty()) plan.input("--parameters", parameters);
   plan.output_folder("-o", output);
   for (const Job& job : all) {
+    if (outfits)
+      for (const std::filesystem::path& pattern : job.patterns)
+        plan.input(job.name + "'s pattern", pattern);
     plan.input(job.name + "'s body", job.body);
     plan.input(job.name + "'s body locations", location_overrides_path(job.body));
     const JobFiles files = job_files(job, output);

@@ -8,6 +8,7 @@
 #include "engine/io/garment_obj.h"
 #include "engine/io/quality_json.h"
 #include "engine/pattern/garment_mesh.h"
+#include "engine/pattern/outfit.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/verdict.h"
 
@@ -24,7 +25,12 @@ int check_command(const std::vector<std::string>& args) {
   if (!(options.target_edge_length > 0.0))
     throw UsageError("--edge-length must be positive (metres)");
 
-  const Garment garment = build_garment(load_pattern(*pattern_path), options);
+  // Several patterns (comma-separated) are an outfit, as `run` takes them.
+  const std::vector<std::string> pattern_paths = line.list("--pattern");
+  const Garment garment = build_garment(
+      pattern_paths.size() == 1 ? load_pattern(pattern_paths.front())
+                                : load_outfit_pattern({pattern_paths.begin(), pattern_paths.end()}),
+      options);
   const Eigen::MatrixX3d positions = read_garment_obj(garment_path, garment);
   const BodyMesh body = load_body_obj(body_path);
   const BodyReference reference(body);

@@ -26,7 +26,8 @@ const Command kCommands[] = {
      "object {pieces, stitches, darts, openings, vertices, triangles}.",
      garment::cli::inspect_command},
     {"run",
-     "run PATTERN.json [--body BODY.obj] -o OUT.obj [--glb OUT.glb] [--export KINDS] [--report "
+     "run PATTERN.json [MORE.json ...] [--body BODY.obj] -o OUT.obj [--glb OUT.glb] [--export "
+     "KINDS] [--report "
      "R.json] "
      "[--seed-pieces a,b "
      "--seed-location NAME] "
@@ -34,7 +35,11 @@ const Command kCommands[] = {
      "[--attempts N] [--clearance MM] [--quiet]",
      "Arranges the pattern on the body (default: the bundled mean body) and writes the garment "
      "OBJ\n"
-     "(one group per panel, vt = pattern coordinates); --glb also writes the garment and the body\n"
+     "(one group per panel, vt = pattern coordinates). Several patterns are an outfit, the first\n"
+     "innermost: each garment arranged outside the ones before it (a shirt tucked in: shirt then\n"
+     "skirt; worn over: skirt then shirt), one post-process over all, groups named GARMENT:PANEL\n"
+     "(GARMENT: the file name without _specification.json or .json), crossings between garments\n"
+     "printed and reported per pair; --glb also writes the garment and the body\n"
      "as glTF 2.0 binary for viewers. --export sewn-obj,sewn-glb,sewing-obj (any of them) also\n"
      "writes files for cloth simulators next to OUT.obj: OUT.sewn.obj (seam and dart pairs merged\n"
      "into one mesh, pattern UVs per corner), OUT.sewn.glb (the same mesh and the body, no UVs) "
@@ -61,7 +66,8 @@ const Command kCommands[] = {
      "garment passes the quality check, 3 when it was written but fails it.",
      garment::cli::run_command},
     {"batch",
-     "batch DIR -o OUTDIR [--jobs N] [--body BODY.obj] [--bodies DIR] [--time-limit S] [--limit N] "
+     "batch DIR|--outfits LIST -o OUTDIR [--jobs N] [--body BODY.obj] [--bodies DIR] [--time-limit "
+     "S] [--limit N] "
      "[--parameters P.json] [--attempts N] [--export KINDS] [--clearance MM] [--shard K/N]",
      "Runs `run` on every pattern in DIR, each in its own process with one thread and a time "
      "limit\n"
@@ -78,7 +84,11 @@ const Command kCommands[] = {
      "class, time per garment (median, p95, max). --clearance as in `run`.\n"
      "--shard K/N (K 1-based, 1 <= K <= N) runs one part of the batch, for N machines: of the\n"
      "name-sorted patterns (the first --limit of them), those at 0-based positions i with\n"
-     "i % N == K - 1; its summary says which shard it is. `summary` merges the shards' OUTDIRs.",
+     "i % N == K - 1; its summary says which shard it is. `summary` merges the shards' OUTDIRs.\n"
+     "--outfits LIST instead of DIR: an outfit per line of LIST, its pattern files separated by\n"
+     "spaces, the first innermost (as `run` takes them), and optionally its body (a .obj; else\n"
+     "--body); paths relative to LIST's folder, # starts a comment line; NAME is the garments'\n"
+     "names joined by '+'.",
      garment::cli::batch_command},
     {"summary", "summary OUTDIR... [-o MERGED_DIR]",
      "Merges the summaries of the shards of a batch (batch --shard K/N, each OUTDIR one shard):\n"
@@ -103,9 +113,11 @@ const Command kCommands[] = {
      "locations:[{name, center, axis, surface, ...}], sdf:{spacing_m, build_seconds, cached}}.",
      garment::cli::body_command},
     {"check",
-     "check GARMENT.obj --pattern PATTERN.json [--body BODY.obj] [--json] [--edge-length M]",
+     "check GARMENT.obj --pattern PATTERN.json[,MORE.json...] [--body BODY.obj] [--json] "
+     "[--edge-length M]",
      "Measures a garment OBJ (as exported: one group per panel, vt = pattern coordinates)\n"
-     "made from PATTERN.json (meshed at --edge-length, default 0.02 m) on BODY.obj (default:\n"
+     "made from PATTERN.json (several, comma-separated: an outfit of `run`, groups GARMENT:PANEL) "
+     "(meshed at --edge-length, default 0.02 m) on BODY.obj (default:\n"
      "the bundled body, resources/bodies/mean_all.obj) and prints every metric:\n"
      "body_inside_vertices (and max depth), body_crossing_edges, self_crossing_edges (cloth\n"
      "edges through cloth triangles, seams welded, with the pairs of pieces), folds\n"

@@ -19,6 +19,7 @@
 #include "engine/io/session_report.h"
 #include "engine/io/sewn_export.h"
 #include "engine/quality/garment_metrics.h"
+#include "engine/quality/outfit_crossings.h"
 #include "engine/quality/verdict.h"
 #include "engine/recovery/recovery.h"
 #include "engine/seeding/piece_classifier.h"
@@ -59,6 +60,20 @@ std::vector<int> piece_indices(const Garment& garment, const std::vector<std::st
   return pieces;
 }
 
+// An outfit's crossings between garments, a line per pair of garments that cross.
+void print_outfit_crossings(const Scene& scene, const GarmentMetrics& metrics) {
+  if (scene.outfit.empty()) return;
+  std::vector<int> piece_garment;
+  for (std::size_t g = 0; g < scene.outfit.size(); ++g)
+    piece_garment.insert(piece_garment.end(), scene.outfit[g].piece_count, static_cast<int>(g));
+  const std::vector<GarmentPairCrossings> pairs =
+      crossings_between_garments(piece_garment, metrics);
+  if (pairs.empty()) std::printf("  no crossing between garments\n");
+  for (const GarmentPairCrossings& pair : pairs)
+    std::printf("  %s × %s: %d crossing edges\n", scene.outfit[pair.inner].name.c_str(),
+                scene.outfit[pair.outer].name.c_str(), pair.edges);
+}
+
 }  // namespace
 
 int run_command(const std::vector<std::string>& args) {
@@ -66,7 +81,9 @@ int run_command(const std::vector<std::string>& args) {
                          {"--body", "-o", "--glb", "--export", "--report", "--seed-pieces",
                           "--seed-location", "--order", "--threads", "--edge-length", "--snapshots",
                           "--parameters", "--attempts", "--clearance"});
-  const std::string pattern_path = line.only_positional("pattern file");
+  // Several patterns are an outfit, the first innermost (pattern/outfit.h).
+  const std::vector<std::string>& pattern_paths = line.positional();
+  if (pattern_paths.empty()) throw UsageError("a pattern file is required");
   const auto output = line.value("-o");
   if (!output) throw UsageError("-o OUT.obj is required");
   const int threads = line.integer("--threads", 0);
@@ -102,7 +119,8 @@ int run_command(const std::vector<std::string>& args) {
     }
 
   OutputPlan plan;
-  plan.input("the pattern", pattern_path);
+  for (const std::string& pattern_path : pattern_paths)
+    plan.input("the pattern", pattern_path);
   plan.input("the body", body_path);
   plan.input("the body's locations", location_overrides_path(body_path));
   plan.input("the classifier weights", default_classifier_weights_path());
@@ -119,7 +137,10 @@ int run_command(const std::vector<std::string>& args) {
   SessionOptions options;
   if (parameters) options.arrangement = load_parameters(*parameters);
   if (line.has("--clearance")) options.arrangement.clearance = clearance_mm / 1000.0;
-  const std::shared_ptr<const Scene> scene = load_scene(pattern_path, body_path, scene_options);
+  const std::shared_ptr<const Scene> scene =
+      pattern_paths.size() == 1 ? load_scene(pattern_paths.front(), body_path, scene_options)
+                                : load_outfit_scene({pattern_paths.begin(), pattern_paths.end()},
+                                                    body_path, scene_options);
   for (const std::string& warning : scene->body->warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const Garment& garment = *scene->garment;
@@ -195,6 +216,7 @@ int run_command(const std::vector<std::string>& args) {
     for (const QualityFailure& failure : verdict.failures)
       std::printf("  %s: %s\n", std::string(failure_kind_name(failure.kind)).c_str(),
                   failure.message.c_str());
+    print_outfit_crossings(*scene, recovered.metrics);
   }
   return verdict.ok() ? kSuccess : kQualityFailed;
 }

@@ -16,7 +16,8 @@ ArrangementContext::ArrangementContext(const Garment& garment_in,
       aligner(garment_in),
       masses(vertex_masses(garment_in, parameters_in.energy.fabric_density)),
       mesh(build_mesh_edges(garment_in.triangles, garment_in.vertex_count())),
-      welded(weld_seams_and_darts(garment_in)) {
+      welded(weld_seams_and_darts(garment_in)),
+      piece_garment(garment_in.pieces.size(), 0) {
   const EnergyParameters& energy = parameters.energy;
   stretch = std::make_shared<StretchPotential>(
       garment, energy.stretch_stiffness, energy.dart_stiffness, energy.stretch_compression_factor);

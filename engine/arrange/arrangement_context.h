@@ -33,6 +33,9 @@ struct ArrangementContext {
   Eigen::VectorXd masses;  // #V kg
   MeshEdges mesh;          // the garment's mesh edges (post-process)
   Eigen::VectorXi welded;  // #V welded vertex ids, seams and darts (weld_seams_and_darts)
+  // #pieces: each piece's garment in an outfit (Scene::outfit), the innermost 0; all 0 for one
+  // garment. A batch stays outside the garments before its own (batch_arrangement.h).
+  std::vector<int> piece_garment;
 
   std::shared_ptr<StretchPotential> stretch;
   std::shared_ptr<BendingPotential> bending;  // interior edges and consistent seams

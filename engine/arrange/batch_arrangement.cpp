@@ -150,9 +150,33 @@ void BatchArrangement::add_self_repulsion(Objective& objective) const {
   std::vector<int> repelled;
   for (int v : vertices_)
     if (batch_ring_[v] < 0 || batch_ring_[v] > 1) repelled.push_back(v);
+  const Garment& garment = context_->garment;
+  const int own = context_->piece_garment[pieces_.front()];
   std::vector<int> obstacles;
-  for (int t = 0; t < context_->garment.triangle_count(); ++t)
-    if (arranged_[context_->garment.triangle_piece(t)]) obstacles.push_back(t);
+  for (int t = 0; t < garment.triangle_count(); ++t) {
+    const int piece = garment.triangle_piece(t);
+    if (arranged_[piece] && context_->piece_garment[piece] == own) obstacles.push_back(t);
+  }
+  add_repulsion(objective, std::move(repelled), std::move(obstacles));
+}
+
+void BatchArrangement::add_outfit_repulsion(Objective& objective, const ActiveSet& active) const {
+  const Garment& garment = context_->garment;
+  const int own = context_->piece_garment[pieces_.front()];
+  if (own == 0) return;
+  std::vector<int> repelled, obstacles;
+  for (int v = 0; v < garment.vertex_count(); ++v)
+    if (active.is_free(v) && context_->piece_garment[garment.vertex_piece(v)] == own)
+      repelled.push_back(v);
+  for (int t = 0; t < garment.triangle_count(); ++t) {
+    const int piece = garment.triangle_piece(t);
+    if (arranged_[piece] && context_->piece_garment[piece] < own) obstacles.push_back(t);
+  }
+  add_repulsion(objective, std::move(repelled), std::move(obstacles));
+}
+
+void BatchArrangement::add_repulsion(Objective& objective, std::vector<int> repelled,
+                                     std::vector<int> obstacles) const {
   if (obstacles.empty() || repelled.empty()) return;
   const EnergyParameters& energy = context_->parameters.energy;
   SelfRepulsionSettings self;
@@ -160,8 +184,8 @@ void BatchArrangement::add_self_repulsion(Objective& objective) const {
   self.buffer = energy.repulsion_buffer;
   self.search_radius = energy.self_repulsion_search_radius;
   self.refresh_interval = energy.self_repulsion_refresh_interval;
-  objective.add(std::make_shared<SelfRepulsionPotential>(context_->garment.triangles, repelled,
-                                                         obstacles, self));
+  objective.add(std::make_shared<SelfRepulsionPotential>(
+      context_->garment.triangles, std::move(repelled), std::move(obstacles), self));
 }
 
 StepRecord BatchArrangement::run(ArrangeStep step, int visit, Eigen::MatrixX3d& positions,
@@ -196,6 +220,7 @@ StepRecord BatchArrangement::run(ArrangeStep step, int visit, Eigen::MatrixX3d& 
   Objective objective(domain_now.active);
   objective.add(context_->stretch).add(context_->bending).add(context_->sewing).add(fixing);
   objective.add(context_->body_repulsion);
+  add_outfit_repulsion(objective, domain_now.active);
   const int deepest = *std::max_element(batch_ring_.begin(), batch_ring_.end());
   const int body_rounds = deepest < 0 ? 0 : deepest / parameters.rings_per_round + 1;
 

@@ -6,6 +6,7 @@
 //                            sewing boundary (§7.2)
 //   refine                   one-sided repulsion against the arranged triangles, default bending,
 //                            then mild gravity, over the 16-ring domain (§7.3)
+// An outfit's later garment is kept outside the garments before it in all three steps.
 // The session decides the order and the revisits (termination.h).
 
 #include <Eigen/Core>
@@ -66,8 +67,14 @@ class BatchArrangement {
     std::vector<int> softly_fixed;  // arranged vertices held by F^ext
   };
   void update_rings();
-  // Eq. 12 one-sided repulsion of the batch against the arranged triangles.
+  // Eq. 12 one-sided repulsion of the batch against the arranged triangles of its garment.
   void add_self_repulsion(Objective& objective) const;
+  // An outfit's later garment: every free vertex of its own in `active` stays outside the
+  // garments before it, in every step (their cloth is nowhere sewn to it).
+  void add_outfit_repulsion(Objective& objective, const ActiveSet& active) const;
+  // Keeps `repelled` outside `obstacles` (triangle ids) with the arrangement's self repulsion.
+  void add_repulsion(Objective& objective, std::vector<int> repelled,
+                     std::vector<int> obstacles) const;
   Domain domain(int rings_free, int rings_fixed_beyond) const;
   int solve_with(Objective& objective, int iterations, const char* stage,
                  Eigen::MatrixX3d& positions, Observer* observer, const IterateCallback& on_iterate,

@@ -6,6 +6,7 @@
 
 #include "engine/io/parameters_json.h"
 #include "engine/io/quality_json.h"
+#include "engine/quality/outfit_crossings.h"
 
 namespace garment {
 namespace {
@@ -15,6 +16,43 @@ nlohmann::json piece_names(const Garment& garment, const std::vector<int>& piece
   for (int piece : pieces)
     names.push_back(garment.pieces[piece].name);
   return names;
+}
+
+nlohmann::json seed_json(const Garment& garment, const SeedPlan& plan) {
+  nlohmann::json seed;
+  seed["reason"] = plan.reason;
+  seed["manual"] = plan.manual;
+  seed["parts"] = nlohmann::json::array();
+  for (const SeedPart& part : plan.parts)
+    seed["parts"].push_back(
+        {{"pieces", piece_names(garment, part.pieces)}, {"location", part.location}});
+  return seed;
+}
+
+// The garments in arrangement order (innermost first), each with its seed, and the crossings
+// between them.
+nlohmann::json outfit_json(const Scene& scene, const SessionReport& report,
+                           const GarmentMetrics& metrics) {
+  const Garment& garment = *scene.garment;
+  std::vector<int> piece_garment(garment.pieces.size(), 0);
+  nlohmann::json garments = nlohmann::json::array();
+  for (std::size_t g = 0; g < scene.outfit.size(); ++g) {
+    const OutfitGarment& part = scene.outfit[g];
+    for (int p = part.first_piece; p < part.first_piece + part.piece_count; ++p)
+      piece_garment[p] = static_cast<int>(g);
+    const SeedPlan* seed = g == 0 ? &report.seed : nullptr;
+    for (const OutfitSeedRecord& later : report.outfit_seeds)
+      if (later.garment == static_cast<int>(g)) seed = &later.seed;
+    garments.push_back({{"name", part.name},
+                        {"pieces", part.piece_count},
+                        {"seed", seed ? seed_json(garment, *seed) : nlohmann::json()}});
+  }
+  nlohmann::json crossings = nlohmann::json::array();
+  for (const GarmentPairCrossings& pair : crossings_between_garments(piece_garment, metrics))
+    crossings.push_back({{"inner", scene.outfit[pair.inner].name},
+                         {"outer", scene.outfit[pair.outer].name},
+                         {"crossing_edges", pair.edges}});
+  return {{"garments", garments}, {"crossings_between_garments", crossings}};
 }
 
 }  // namespace
@@ -28,14 +66,9 @@ std::string session_report_json(const Session& session, const GarmentMetrics& me
   json["body"] = session.scene().body->mesh.source;
   json["vertices"] = garment.vertex_count();
   json["pieces"] = garment.pieces.size();
-  nlohmann::json seed;
-  seed["reason"] = report.seed.reason;
-  seed["manual"] = report.seed.manual;
-  seed["parts"] = nlohmann::json::array();
-  for (const SeedPart& part : report.seed.parts)
-    seed["parts"].push_back(
-        {{"pieces", piece_names(garment, part.pieces)}, {"location", part.location}});
-  json["seed"] = seed;
+  json["seed"] = seed_json(garment, report.seed);
+  if (!session.scene().outfit.empty())
+    json["outfit"] = outfit_json(session.scene(), report, metrics);
   json["order"] = piece_names(garment, report.order);
   json["batches"] = nlohmann::json::array();
   for (const BatchRecord& batch : report.batches) {

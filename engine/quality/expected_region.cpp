@@ -2,9 +2,12 @@
 
 #include <regex>
 
+#include "engine/pattern/outfit.h"
+
 namespace garment {
 
 std::vector<std::string_view> panel_name_words(std::string_view name) {
+  name = panel_name_in_garment(name);  // an outfit's GARMENT:PANEL
   std::vector<std::string_view> words;
   std::size_t start = 0;
   while (start <= name.size()) {
@@ -38,6 +41,7 @@ std::string describe(const ExpectedRegion& region) {
 }
 
 ExpectedRegion expected_region_from_name(std::string_view name) {
+  name = panel_name_in_garment(name);  // an outfit's GARMENT:PANEL
   ExpectedRegion region;
   static const std::regex compact_panel("([LR])(front|back|hood)");
   static const std::regex compact_sleeve("([lr])([fb])sleeve");

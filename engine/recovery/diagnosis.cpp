@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/pattern/outfit.h"
+
 namespace garment {
 namespace {
 
@@ -71,6 +73,7 @@ std::string RecoveryAction::key() const {
     key += word;
   };
   append('@', std::to_string(resume_batch));
+  if (outfit_garment > 0) append('#', std::to_string(outfit_garment));
   if (kind == RecoveryActionKind::Remesh)
     append(' ', std::to_string(std::lround(edge_length * 1e4)) + "e-4m");
   for (int piece : order)
@@ -86,12 +89,17 @@ std::string RecoveryAction::key() const {
 
 Diagnosis diagnose(const Garment& garment, const SessionReport& report,
                    const GarmentMetrics& metrics, const QualityVerdict& verdict,
-                   const std::vector<SeedPlan>& seeds, double first_pass_edge_length) {
+                   const std::vector<GarmentSeeds>& seeds, double first_pass_edge_length) {
   Diagnosis diagnosis;
   const int batch_count = static_cast<int>(report.batches.size());
   diagnosis.piece_batch.assign(garment.pieces.size(), -2);
   for (int piece : report.seed.pieces())
     diagnosis.piece_batch[piece] = -1;
+  // An outfit's later garment's seed counts with the batch arranged right after it (the number
+  // of batches: with the post-process), whose checkpoint comes after the seed.
+  for (const OutfitSeedRecord& outfit_seed : report.outfit_seeds)
+    for (int piece : outfit_seed.seed.pieces())
+      diagnosis.piece_batch[piece] = outfit_seed.first_batch;
   for (int b = 0; b < batch_count; ++b)
     for (int piece : report.batches[b].pieces)
       if (diagnosis.piece_batch[piece] == -2) diagnosis.piece_batch[piece] = b;
@@ -137,6 +145,11 @@ Diagnosis diagnose(const Garment& garment, const SessionReport& report,
     int earlier = pair.piece_a, later = pair.piece_b;
     if (batch_of(earlier) > batch_of(later)) std::swap(earlier, later);
     if (batch_of(earlier) < -1) continue;  // a piece never arranged
+    // Two garments of an outfit: the order of the garments decides which is outside, not the
+    // order of their batches (a later garment's pieces wait for its seed).
+    if (outfit_garment_of(garment.pieces[earlier].name) !=
+        outfit_garment_of(garment.pieces[later].name))
+      continue;
     const std::string pair_names = names(garment, {earlier, later});
     if (batch_of(earlier) == batch_of(later)) {
       if (batch_of(earlier) < 0) continue;  // both in the seed
@@ -167,16 +180,45 @@ Diagnosis diagnose(const Garment& garment, const SessionReport& report,
     }
   }
 
-  const bool misplaced = verdict.failed(FailureKind::Misplaced);
-  if (seed_at_fault || misplaced)
-    for (const SeedPlan& seed : seeds)
-      if (seed.pieces() != report.seed.pieces())
-        actions.add({RecoveryActionKind::Reseed,
-                     -1,
-                     {},
-                     seed,
-                     std::string(seed_at_fault ? "the seed's pieces fail" : "pieces misplaced") +
-                         ": seed " + seed.reason});
+  // Another seed for each garment (an outfit's: each of its garments) whose seed's pieces fail or
+  // whose pieces are misplaced; from just before that seed.
+  for (std::size_t g = 0; g < seeds.size(); ++g) {
+    const GarmentSeeds& own = seeds[g];
+    const auto owns = [&](int piece) {
+      return piece >= own.first_piece && piece < own.first_piece + own.piece_count;
+    };
+    const SeedPlan* in_use = g == 0 ? &report.seed : nullptr;
+    int resume_batch = -1;
+    for (const OutfitSeedRecord& later : report.outfit_seeds)
+      if (later.garment == static_cast<int>(g)) {
+        in_use = &later.seed;
+        resume_batch = later.first_batch;
+      }
+    if (!in_use) continue;  // never seeded
+    const std::vector<int> seed_pieces = in_use->pieces();
+    bool own_seed_at_fault = g == 0 && seed_at_fault, misplaced = false;
+    for (const QualityFailure& failure : verdict.failures)
+      for (int piece : failure.pieces) {
+        if (!owns(piece)) continue;
+        misplaced = misplaced || failure.kind == FailureKind::Misplaced;
+        if (g > 0 && failure.kind != FailureKind::SeamGap &&
+            std::find(seed_pieces.begin(), seed_pieces.end(), piece) != seed_pieces.end())
+          own_seed_at_fault = true;
+      }
+    if (!own_seed_at_fault && !misplaced) continue;
+    for (const SeedPlan& seed : own.candidates)
+      if (seed.pieces() != seed_pieces) {
+        RecoveryAction reseed{
+            RecoveryActionKind::Reseed,
+            resume_batch,
+            {},
+            seed,
+            std::string(own_seed_at_fault ? "the seed's pieces fail" : "pieces misplaced") +
+                ": seed " + seed.reason};
+        reseed.outfit_garment = static_cast<int>(g);
+        actions.add(std::move(reseed));
+      }
+  }
 
   diagnosis.actions = actions.take();
   return diagnosis;
@@ -189,7 +231,12 @@ SessionOptions apply_action(const RecoveryAction& action, SessionOptions options
       options.order = action.order;
       break;
     case RecoveryActionKind::Reseed:
-      options.seed = action.seed;
+      if (action.outfit_garment > 0) {
+        if (options.outfit_seeds.size() <= static_cast<std::size_t>(action.outfit_garment))
+          options.outfit_seeds.resize(action.outfit_garment + 1);
+        options.outfit_seeds[action.outfit_garment] = action.seed;
+      } else
+        options.seed = action.seed;
       options.order.clear();
       break;
     case RecoveryActionKind::SettleLonger:

@@ -42,12 +42,14 @@ const char* to_string(RecoveryActionKind kind);
 struct RecoveryAction {
   RecoveryActionKind kind = RecoveryActionKind::Reorder;
   // The batch (SessionReport::batches) the attempt starts again from: -1 the seed; the number of
-  // batches the post-process.
+  // batches the post-process. A reseed of an outfit's later garment starts again just before
+  // that garment's seed (Session::checkpoint_before_outfit_seed), which comes before this batch.
   int resume_batch = -1;
   std::vector<int> order;        // Reorder: pieces to arrange next, each in a batch of its own
   std::optional<SeedPlan> seed;  // Reseed
   std::string reason;            // one line: what and why, with piece names
   double edge_length = 0.0;      // Remesh: the mesh's target edge length, metres
+  int outfit_garment = 0;        // Reseed: the garment of an outfit seeded (0: the first or only)
 
   // The same action on the same session: equal keys (the recovery tries each once).
   std::string key() const;
@@ -64,12 +66,19 @@ struct Diagnosis {
 // The remeshes' edge lengths, in the order to try them, as fractions of the first pass's.
 inline constexpr double kRemeshRatios[] = {0.8, 0.9, 1.1};
 
-// seeds: seed_candidates of the garment; the report's own seed is left out of the reseeds.
+// The seeds the recovery may try for one garment (an outfit's: each of its garments).
+struct GarmentSeeds {
+  int first_piece = 0, piece_count = 0;  // the garment's pieces
+  std::vector<SeedPlan> candidates;      // seed_candidates of the garment alone
+};
+
+// seeds: each garment's (one for a garment that is no outfit); the seed in use is left out of
+// the reseeds, and a garment is reseeded only for a failure among its own pieces.
 // first_pass_edge_length: the first pass's mesh (metres); the remeshes are fractions of it, not of
 // the mesh of the session diagnosed, so that they do not compound.
 Diagnosis diagnose(const Garment& garment, const SessionReport& report,
                    const GarmentMetrics& metrics, const QualityVerdict& verdict,
-                   const std::vector<SeedPlan>& seeds, double first_pass_edge_length);
+                   const std::vector<GarmentSeeds>& seeds, double first_pass_edge_length);
 
 // The session options an action gives, from those of the session it corrects.
 SessionOptions apply_action(const RecoveryAction& action, SessionOptions options);

@@ -32,6 +32,13 @@ struct Attempt {
   AttemptRecord record;
 };
 
+// The checkpoint of `base` an action resumes.
+std::size_t resumed_checkpoint(const Session& base, const RecoveryAction& action) {
+  if (action.kind == RecoveryActionKind::Reseed && action.outfit_garment > 0)
+    return base.checkpoint_before_outfit_seed(action.outfit_garment);
+  return base.checkpoint_before_batch(action.resume_batch);
+}
+
 // What an action on `base` is likely to cost: the work `base` did from the checkpoint the action
 // resumes, twice that for the longer settle (its iterations doubled), and for a new mesh all of it
 // in proportion to the vertices (the square of the edge lengths' ratio). Deterministic, so that
@@ -41,8 +48,7 @@ double estimated_work(const Session& base, const RecoveryAction& action) {
     const double ratio = base.scene().garment->target_edge_length / action.edge_length;
     return base.report().work * ratio * ratio;
   }
-  const double after =
-      base.report().work - base.checkpoint_work(base.checkpoint_before_batch(action.resume_batch));
+  const double after = base.report().work - base.checkpoint_work(resumed_checkpoint(base, action));
   return action.kind == RecoveryActionKind::SettleLonger ? 2.0 * after : after;
 }
 
@@ -58,9 +64,8 @@ void run_attempt(const Session& base, const BodyReference* body, Observer* obser
     attempt.session =
         std::make_shared<Session>(attempt.remeshed, apply_action(action, base.options()));
   else
-    attempt.session =
-        std::make_shared<Session>(base, base.checkpoint_before_batch(action.resume_batch),
-                                  apply_action(action, base.options()));
+    attempt.session = std::make_shared<Session>(base, resumed_checkpoint(base, action),
+                                                apply_action(action, base.options()));
   const double work_before = attempt.session->report().work;
   CancelOnly cancel(observer);
   attempt.session->run(&cancel);
@@ -100,8 +105,13 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
   }
 
   const BodyLandmarks& landmarks = scene.body->landmarks;
-  const std::vector<SeedPlan> seeds =
-      seed_candidates(garment, scene.classification, landmarks.neck - landmarks.waist);
+  std::vector<GarmentSeeds> seeds;
+  if (scene.outfit.empty())
+    seeds.push_back(
+        {0, static_cast<int>(garment.pieces.size()),
+         seed_candidates(garment, scene.classification, landmarks.neck - landmarks.waist)});
+  for (const OutfitGarment& part : scene.outfit)
+    seeds.push_back({part.first_piece, part.piece_count, part.seed_candidates});
   const int concurrency =
       settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
   // Each action once per garment: the same action again on an attempt that took it compounds it
@@ -139,7 +149,7 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
       if (action.kind == RecoveryActionKind::Remesh) {
         // Meshed here, before the round: a mesh past the vertex budget is no attempt.
         try {
-          remeshed = remesh_scene(*result.session->scene().garment, scene.body, action.edge_length);
+          remeshed = remesh_scene(result.session->scene(), action.edge_length);
         } catch (const BudgetError&) {
           tried.push_back(key);
           continue;

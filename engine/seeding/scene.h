@@ -11,8 +11,18 @@
 #include "engine/core/observer.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/seeding/piece_classifier.h"
+#include "engine/seeding/seed_choice.h"
 
 namespace garment {
+
+// One garment of an outfit (load_outfit_scene): its pieces, and the seed chosen for it alone.
+struct OutfitGarment {
+  std::string name;  // outfit_garment_name of its file; its pieces are named NAME:PANEL
+  int first_piece = 0, piece_count = 0;
+  SeedPlan seed;  // choose_seed on the garment alone, in the outfit's piece indices
+  std::vector<SeedPlan> seed_candidates;   // seed_candidates on it alone (the recovery's reseeds)
+  std::shared_ptr<const Pattern> pattern;  // the garment's own, as its file gave it
+};
 
 struct Scene {
   std::shared_ptr<const Garment> garment;
@@ -22,6 +32,9 @@ struct Scene {
   // #V×3 where pieces are before they are arranged: the file's own flat placement (the state
   // GarmentCode's simulator starts from), for display only.
   Eigen::MatrixX3d initial_positions;
+  // An outfit's garments, innermost first: each is seeded and arranged after the ones before it,
+  // outside them (session.h). Empty for one garment.
+  std::vector<OutfitGarment> outfit;
 };
 
 struct SceneOptions {
@@ -36,6 +49,21 @@ std::shared_ptr<const Scene> load_scene(const std::filesystem::path& pattern,
                                         const SceneOptions& options = {},
                                         Observer* observer = nullptr);
 
+// Several patterns worn on one body, the first innermost (pattern/outfit.h): one garment of all
+// their pieces, each garment classified and seeded on its own. Throws InputError as load_scene,
+// and for two files with the same garment name.
+std::shared_ptr<const Scene> load_outfit_scene(const std::vector<std::filesystem::path>& patterns,
+                                               const std::filesystem::path& body,
+                                               const SceneOptions& options = {},
+                                               Observer* observer = nullptr);
+
+// The same outfit from patterns already loaded (names: their outfit_garment_names).
+std::shared_ptr<const Scene> make_outfit_scene(const std::vector<Pattern>& patterns,
+                                               const std::vector<std::string>& names,
+                                               std::shared_ptr<const Body> body,
+                                               const SceneOptions& options = {},
+                                               Observer* observer = nullptr);
+
 // From parts already loaded (the editor keeps the body when the pattern changes, and back).
 std::shared_ptr<const Scene> make_scene(std::shared_ptr<const Garment> garment,
                                         std::shared_ptr<const Body> body,
@@ -46,5 +74,8 @@ std::shared_ptr<const Scene> make_scene(std::shared_ptr<const Garment> garment,
 // `load_scene` gives for the same files with that edge length. Throws BudgetError as build_garment.
 std::shared_ptr<const Scene> remesh_scene(const Garment& garment, std::shared_ptr<const Body> body,
                                           double target_edge_length);
+// `scene` meshed again at `target_edge_length`: an outfit stays an outfit, each garment classified
+// and seeded again on its own.
+std::shared_ptr<const Scene> remesh_scene(const Scene& scene, double target_edge_length);
 
 }  // namespace garment

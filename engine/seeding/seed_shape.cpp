@@ -16,6 +16,7 @@
 #include "engine/energy/body_repulsion_potential.h"
 #include "engine/energy/centring_potential.h"
 #include "engine/energy/objective.h"
+#include "engine/energy/self_repulsion_potential.h"
 #include "engine/energy/sewing_potential.h"
 #include "engine/energy/stretch_potential.h"
 #include "engine/energy/upward_potential.h"
@@ -360,6 +361,12 @@ SolveReport solve_seed_shape(const Scene& scene, const SeedPlan& plan,
       if (leg || positions(v, 1) >= scene.body->landmarks.crotch) attracted.push_back(v);
     }
   }
+  // The garments underneath are held where they are: a contact with a corner Outside the solve
+  // would take no part in it. (Letting them give way near the seed, held by a soft spring, so that
+  // a waistband would press a shirt to the body: no outfit of the tuning half's 40 pairs changed.)
+  for (int t : options.obstacle_triangles)
+    for (int corner = 0; corner < 3; ++corner)
+      active.set_role(garment.triangles(t, corner), VertexRole::Fixed);
   active.set_role(seed_vertices, VertexRole::Free);
   Objective objective(active);
   std::vector<BendingStencil> stencils = interior_bending_stencils(garment);
@@ -394,6 +401,15 @@ SolveReport solve_seed_shape(const Scene& scene, const SeedPlan& plan,
             : Eigen::Vector3d(location->center +
                               energy.body_distance * location->axis.normalized());
     objective.add(std::make_shared<CentringPotential>(vertices, target, energy.centring_stiffness));
+  }
+  if (!options.obstacle_triangles.empty()) {
+    SelfRepulsionSettings self;
+    self.stiffness = energy.self_repulsion_stiffness;
+    self.buffer = energy.repulsion_buffer;
+    self.search_radius = options.obstacle_search_radius;
+    self.refresh_interval = energy.self_repulsion_refresh_interval;
+    objective.add(std::make_shared<SelfRepulsionPotential>(garment.triangles, seed_vertices,
+                                                           options.obstacle_triangles, self));
   }
   SolverSettings settings;
   settings.max_iterations = options.iterations;

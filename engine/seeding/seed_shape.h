@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <vector>
 
 #include "engine/core/observer.h"
 #include "engine/energy/energy_parameters.h"
@@ -23,6 +24,12 @@ struct SeedShapeOptions {
   // A shaped seed whose edges stretch beyond this (max strain) is caught on the body: it is shaped
   // again from the next SeedStart (see shape_seed).
   double broken_strain = 0.5;
+  // An outfit's later garment (session.h): its seed stays outside these triangles (#garment ids,
+  // the garments arranged before it) by the one-sided self repulsion of the arrangement (Eq. 12),
+  // looked up this far (m): farther than the arrangement's 2 cm, since the seed starts at the
+  // body's distance and a loose garment underneath hangs farther out than that.
+  std::vector<int> obstacle_triangles;
+  double obstacle_search_radius = 0.1;
 };
 
 struct SeedShapeReport {

@@ -58,7 +58,9 @@ Session::Session(std::shared_ptr<const Scene> scene, SessionOptions options)
   const Garment& garment = *scene_->garment;
   build_arrangement(garment);
   const BodyLandmarks& landmarks = scene_->body->landmarks;
-  automatic_seed_ = choose_seed(garment, scene_->classification, landmarks.neck - landmarks.waist);
+  automatic_seed_ = scene_->outfit.empty() ? choose_seed(garment, scene_->classification,
+                                                         landmarks.neck - landmarks.waist)
+                                           : scene_->outfit.front().seed;
   state_.positions = scene_->initial_positions;
   state_.arranged.assign(garment.pieces.size(), false);
   state_.pieces.assign(garment.pieces.size(), PieceState::Waiting);
@@ -95,6 +97,11 @@ Session::~Session() = default;
 void Session::build_arrangement(const Garment& garment) {
   context_ = std::make_unique<ArrangementContext>(garment, scene_->sdf, scene_->body->landmarks,
                                                   options_.arrangement);
+  for (std::size_t g = 0; g < scene_->outfit.size(); ++g) {
+    const OutfitGarment& part = scene_->outfit[g];
+    std::fill_n(context_->piece_garment.begin() + part.first_piece, part.piece_count,
+                static_cast<int>(g));
+  }
   selector_ = std::make_unique<Selector>(garment, options_.arrangement.selection);
   termination_ = std::make_unique<TerminationCheck>(garment);
 }
@@ -116,6 +123,14 @@ std::size_t Session::checkpoint_before_batch(int batch) const {
   return found;
 }
 
+std::size_t Session::checkpoint_before_outfit_seed(int garment) const {
+  const std::vector<std::size_t> path = checkpoint_path(current_);
+  std::size_t found = path.front();
+  for (std::size_t i : path)
+    if (checkpoints_[i].batch_complete && checkpoints_[i].state.outfit_garment < garment) found = i;
+  return found;
+}
+
 std::vector<std::size_t> Session::checkpoint_path(std::size_t index) const {
   std::vector<std::size_t> path;
   // Parents are always taken before their children, so the walk ends.
@@ -126,7 +141,8 @@ std::vector<std::size_t> Session::checkpoint_path(std::size_t index) const {
 }
 
 void Session::checkpoint(bool batch_complete, int parent) {
-  checkpoints_.push_back({state_, batch_complete, parent, options_.seed, options_.order});
+  checkpoints_.push_back(
+      {state_, batch_complete, parent, options_.seed, options_.outfit_seeds, options_.order});
   current_ = checkpoints_.size() - 1;
 }
 
@@ -143,6 +159,7 @@ void Session::restore(std::size_t index) {
   const Checkpoint& checkpoint = checkpoints_[index];
   state_ = checkpoint.state;
   options_.seed = checkpoint.seed;
+  options_.outfit_seeds = checkpoint.outfit_seeds;
   options_.order = checkpoint.order;
   current_ = index;
 }
@@ -237,11 +254,20 @@ void Session::run(SessionObserver* observer) {
 }
 
 void Session::run_seed(SessionObserver* observer) {
-  const SeedPlan plan = options_.seed ? *options_.seed : automatic_seed_;
+  const int outfit_garment = state_.outfit_garment;
+  const std::vector<std::optional<SeedPlan>>& asked = options_.outfit_seeds;
+  const bool other = outfit_garment < static_cast<int>(asked.size()) && asked[outfit_garment];
+  const SeedPlan plan = outfit_garment == 0 ? (options_.seed ? *options_.seed : automatic_seed_)
+                        : other             ? *asked[outfit_garment]
+                                            : scene_->outfit[outfit_garment].seed;
   int iterations = 0;
   ForwardingObserver forward(observer);
   SeedShapeOptions seed_options;
   seed_options.iterations = options_.arrangement.seed_iterations;
+  const Garment& garment = *scene_->garment;
+  if (outfit_garment > 0)
+    for (int t = 0; t < garment.triangle_count(); ++t)
+      if (state_.arranged[garment.triangle_piece(t)]) seed_options.obstacle_triangles.push_back(t);
   const SeedShapeReport shaped =
       shape_seed(*scene_, plan, options_.arrangement.energy, state_.positions, &forward,
                  live_snapshots(observer, Phase::Seed, &iterations), seed_options);
@@ -254,7 +280,11 @@ void Session::run_seed(SessionObserver* observer) {
         std::remove(state_.explicit_order.begin(), state_.explicit_order.end(), piece),
         state_.explicit_order.end());
   }
-  state_.report.seed = plan;
+  if (outfit_garment > 0)
+    state_.report.outfit_seeds.push_back(
+        {outfit_garment, plan, static_cast<int>(state_.report.batches.size())});
+  else
+    state_.report.seed = plan;
   record_phase({Phase::Seed, -1, 0, shaped.iterations, shaped.work, shaped.seconds});
   state_.phase = Phase::Select;
 }
@@ -272,6 +302,11 @@ std::vector<int> Session::next_explicit_batch() const {
 void Session::run_select() {
   std::vector<int> pieces = next_explicit_batch();
   if (pieces.empty()) pieces = selector_->next_batch(state_.arranged, state_.positions);
+  if (pieces.empty() && state_.outfit_garment + 1 < static_cast<int>(scene_->outfit.size())) {
+    ++state_.outfit_garment;  // the outfit's next garment, from its own seed
+    state_.phase = Phase::Seed;
+    return;
+  }
   if (pieces.empty()) {
     // Nothing left that is sewn to the arranged set. Pieces not connected to it are not placed.
     state_.phase = options_.post_process ? Phase::PostProcess : Phase::Done;
@@ -380,9 +415,17 @@ void Session::accept_batch() {
 void Session::run_post_process(SessionObserver* observer) {
   int iterations = 0;
   ForwardingObserver forward(observer);
+  // In arrangement order: an outfit's later seeds between the batches of the garments before them.
   std::vector<std::vector<int>> layers{state_.report.seed.pieces()};
-  for (const BatchRecord& batch : state_.report.batches)
-    layers.push_back(batch.pieces);
+  const std::vector<BatchRecord>& batches = state_.report.batches;
+  auto outfit_seed = state_.report.outfit_seeds.begin();
+  for (std::size_t b = 0; b <= batches.size(); ++b) {
+    for (; outfit_seed != state_.report.outfit_seeds.end() &&
+           outfit_seed->first_batch == static_cast<int>(b);
+         ++outfit_seed)
+      layers.push_back(outfit_seed->seed.pieces());
+    if (b < batches.size()) layers.push_back(batches[b].pieces);
+  }
   const PostProcessReport report =
       post_process(*context_, layers, state_.report.work, state_.arranged, state_.positions,
                    &forward, live_snapshots(observer, Phase::PostProcess, &iterations));
@@ -423,10 +466,12 @@ void Session::reorder(const std::vector<int>& order) {
       keep = i;
   }
   const std::optional<SeedPlan> seed = options_.seed;
+  const std::vector<std::optional<SeedPlan>> outfit_seeds = options_.outfit_seeds;
   restore(keep);
   // Continues from there with this order alone: what was left of the checkpoint's own order
   // (which the checkpoint keeps) would otherwise go first.
   options_.seed = seed;
+  options_.outfit_seeds = outfit_seeds;
   options_.order = order;
   state_.explicit_order.clear();
   for (int piece : order)

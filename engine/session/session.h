@@ -5,6 +5,11 @@
 //                     ↑                                              ├→ Align … (revisit, §7.4)
 //                     └──────────────────────────────────────────────┘→ PostProcess → Done
 //
+// An outfit (Scene::outfit) is arranged garment by garment, innermost first: when nothing sewn to
+// the arranged pieces is left, Select goes to Seed again for the next garment, whose seed and
+// batches stay outside the garments before it; one post-process then settles the whole outfit,
+// every garment outside the ones before it.
+//
 // step() runs exactly one phase; run() steps to the end. The command line and the editor drive it
 // the same way; an observer sees progress, receives snapshots (also during solves, throttled) and
 // can cancel. The arrangement order is recorded; an explicit order and a manual seed are accepted.
@@ -39,7 +44,10 @@ enum class PieceState : unsigned char { Waiting, InBatch, Arranged, Seed };
 struct SessionOptions {
   ArrangementParameters arrangement;
   std::optional<SeedPlan> seed;  // manual seed (§5.1.2); the classifier's choice when empty
-  std::vector<int> order;        // explicit arrangement order (piece indices), may be partial
+  // An outfit's later garments seeded with these instead of their own seeds (the recovery's
+  // reseeds), by index into Scene::outfit; missing or empty: the garment's own.
+  std::vector<std::optional<SeedPlan>> outfit_seeds;
+  std::vector<int> order;  // explicit arrangement order (piece indices), may be partial
   bool post_process = true;
   // Seconds between snapshots sent to the observer during solves (the editor asks for ~30 ms).
   double snapshot_interval = 0.03;
@@ -63,8 +71,16 @@ struct BatchRecord {
   double seconds = 0.0;
 };
 
-struct SessionReport {
+// The seed of an outfit's later garment (Scene::outfit), arranged after `first_batch` batches.
+struct OutfitSeedRecord {
+  int garment = 0;  // index into Scene::outfit
   SeedPlan seed;
+  int first_batch = 0;
+};
+
+struct SessionReport {
+  SeedPlan seed;  // the first (or only) garment's
+  std::vector<OutfitSeedRecord> outfit_seeds;
   std::vector<int> order;  // pieces in the order they were arranged
   std::vector<BatchRecord> batches;
   std::vector<PhaseRecord> phases;
@@ -134,6 +150,9 @@ class Session {
   // selected, on the way to the current checkpoint: its start for -1, the one before the
   // post-process for the number of batches.
   std::size_t checkpoint_before_batch(int batch) const;
+  // The checkpoint taken between batches just before an outfit's garment `garment` (≥ 1, into
+  // Scene::outfit) was seeded, on the way to the current checkpoint: its start if it never was.
+  std::size_t checkpoint_before_outfit_seed(int garment) const;
   // The session's work (SessionReport::work) when checkpoint `index` was taken.
   double checkpoint_work(std::size_t index) const;
 
@@ -153,6 +172,7 @@ class Session {
     std::vector<int> explicit_order;        // what is left of the requested order
     std::optional<BatchArrangement> batch;  // the batch in progress
     int batch_index = -1;
+    int outfit_garment = 0;  // the garment of Scene::outfit being arranged
     int visit = 0, flatten_revisits = 0;
     bool seam_revisited = false, grown = false;
     // The batch and positions as they were checked just before the batch grew.
@@ -168,7 +188,8 @@ class Session {
     State state;
     bool batch_complete = false;   // taken right after a batch was accepted (or after the seed)
     int parent = -1;               // the checkpoint this one continues
-    std::optional<SeedPlan> seed;  // SessionOptions::seed and order when it was taken
+    std::optional<SeedPlan> seed;  // SessionOptions::seed, outfit_seeds and order when it was taken
+    std::vector<std::optional<SeedPlan>> outfit_seeds;
     std::vector<int> order;
   };
 

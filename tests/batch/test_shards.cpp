@@ -20,11 +20,16 @@
 #include <sstream>
 #include <string>
 
+#include "support/garment_init_process.h"
 #include "support/test_paths.h"
 
 namespace fs = std::filesystem;
 
 namespace {
+
+using garment::test::file_contents;
+using garment::test::garment_init;
+using garment::test::ProcessResult;
 
 // Small patterns, in the name order the batch sorts them in: five, so that the three shards get
 // two, two and one, and a merge that interleaved them wrongly would show.
@@ -32,33 +37,9 @@ const char* const kPatterns[] = {"gc_0005_specification.json", "gc_0012_specific
                                  "gc_0022_specification.json", "gc_0037_specification.json",
                                  "skirts__skirt_4_panels.json"};
 
-struct Result {
-  int exit_code;
-  QString out, err;
-};
-
-Result garment_init(const QStringList& arguments) {
-  QProcess process;
-  process.start(GARMENT_INIT_EXE, arguments);
-  if (!process.waitForFinished(300000)) {
-    process.kill();
-    process.waitForFinished();
-    return {-1, {}, "timed out"};
-  }
-  return {process.exitStatus() == QProcess::NormalExit ? process.exitCode() : -1,
-          process.readAllStandardOutput(), process.readAllStandardError()};
-}
-
-std::string contents(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 QJsonObject summary_json(const QString& folder) {
   return QJsonDocument::fromJson(
-             QByteArray::fromStdString(contents((folder + "/summary.json").toStdString())))
+             QByteArray::fromStdString(file_contents((folder + "/summary.json").toStdString())))
       .object();
 }
 
@@ -82,7 +63,7 @@ QJsonObject timeless(QJsonObject summary) {
 // summary.md without its timing: every number printed with two decimals is a time (counts are
 // whole, the success rate has one decimal).
 QString timeless_markdown(const QString& folder) {
-  return QString::fromStdString(contents((folder + "/summary.md").toStdString()))
+  return QString::fromStdString(file_contents((folder + "/summary.md").toStdString()))
       .replace(QRegularExpression("\\b\\d+\\.\\d\\d\\b"), "T");
 }
 
@@ -121,13 +102,14 @@ class ShardsTest : public QObject {
               "post_process_iterations": 5})";
     batch_options_ = {"--attempts", "1", "--parameters", path("fast.json")};
     whole_ = path("whole");
-    const Result whole =
+    const ProcessResult whole =
         garment_init(QStringList{"batch", patterns_, "-o", whole_, "--jobs", "2"} + batch_options_);
     QVERIFY2(whole.exit_code == 0, qPrintable(whole.err));
     for (int k = 1; k <= 3; ++k) {
-      const Result result = garment_init(QStringList{"batch", patterns_, "-o", shard(k), "--jobs",
-                                                     "2", "--shard", QString("%1/3").arg(k)} +
-                                         batch_options_);
+      const ProcessResult result =
+          garment_init(QStringList{"batch", patterns_, "-o", shard(k), "--jobs", "2", "--shard",
+                                   QString("%1/3").arg(k)} +
+                       batch_options_);
       QVERIFY2(result.exit_code == 0, qPrintable(result.err));
     }
   }
@@ -171,7 +153,7 @@ class ShardsTest : public QObject {
     QStringList arguments{"summary"};
     for (const QString& k : order)
       arguments << shard(k.toInt());
-    const Result result = garment_init(arguments + QStringList{"-o", merged});
+    const ProcessResult result = garment_init(arguments + QStringList{"-o", merged});
     QVERIFY2(result.exit_code == 0, qPrintable(result.err));
     QVERIFY(result.out.contains("5 patterns: "));
     const QJsonObject expected = timeless(summary_json(whole_)),
@@ -191,7 +173,7 @@ class ShardsTest : public QObject {
   // Without -o the merge only prints.
   void merge_without_output_writes_nothing() {
     const auto before = QDir(root_.path()).entryList();
-    const Result result = garment_init({"summary", shard(1), shard(2), shard(3)});
+    const ProcessResult result = garment_init({"summary", shard(1), shard(2), shard(3)});
     QVERIFY2(result.exit_code == 0, qPrintable(result.err));
     QVERIFY(result.out.contains("5 patterns: ") && !result.out.contains("summary: "));
     QCOMPARE(QDir(root_.path()).entryList(), before);
@@ -205,7 +187,7 @@ class ShardsTest : public QObject {
   void bad_shard_is_refused() {
     QFETCH(QString, value);
     const QString output = path("refused");
-    const Result result =
+    const ProcessResult result =
         garment_init({"batch", patterns_, "-o", output, "--attempts", "1", "--shard", value});
     QCOMPARE(result.exit_code, 2);
     QVERIFY2(result.err.contains("--shard K/N"), qPrintable(result.err));
@@ -306,7 +288,8 @@ class ShardsTest : public QObject {
                 shard(2), shard(3)};
     }
     const QString merged = QString::fromStdString((base / "merged").string());
-    const Result result = garment_init(QStringList{"summary"} + inputs + QStringList{"-o", merged});
+    const ProcessResult result =
+        garment_init(QStringList{"summary"} + inputs + QStringList{"-o", merged});
     QCOMPARE(result.exit_code, 1);
     QVERIFY2(result.err.contains(message), qPrintable(result.err));
     QVERIFY(!QFileInfo::exists(merged));
@@ -314,11 +297,12 @@ class ShardsTest : public QObject {
 
   // The merged summary may not replace a shard's: it would be read back as that shard.
   void merge_onto_an_input_is_refused() {
-    const std::string before = contents((shard(1) + "/summary.json").toStdString());
-    const Result result = garment_init({"summary", shard(1), shard(2), shard(3), "-o", shard(1)});
+    const std::string before = file_contents((shard(1) + "/summary.json").toStdString());
+    const ProcessResult result =
+        garment_init({"summary", shard(1), shard(2), shard(3), "-o", shard(1)});
     QCOMPARE(result.exit_code, 2);
     QVERIFY2(result.err.contains("summary.json"), qPrintable(result.err));
-    QCOMPARE(contents((shard(1) + "/summary.json").toStdString()), before);
+    QCOMPARE(file_contents((shard(1) + "/summary.json").toStdString()), before);
   }
 };
 

@@ -3,7 +3,8 @@
 // - each failure is put on the earliest batch among its pieces, each piece on its batch;
 // - crossing pieces of two batches → the later arranged before the earlier, from the earlier's
 //   batch; crossing inside a batch → the two in batches of their own, in either order;
-// - misplaced pieces → every other seed the rules find, from the seed; never the seed in use;
+// - misplaced pieces → every other seed the rules find, from the seed; never the seed in use; in an
+//   outfit, for the garment of the misplaced pieces only, as that garment's seed;
 // - a near miss → first a longer settle, resumed at the post-process;
 // - any failure → the whole arrangement again at 16, 18 and 22 mm for a 20 mm first pass, whatever
 //   the mesh of the session diagnosed, before the actions of the failure's own kind; a failure
@@ -106,7 +107,7 @@ class DiagnosisTest : public QObject {
     const std::vector<SeedPlan> seeds = {seed_of({0}, "waist", "waist piece (classifier)"),
                                          seed_of({1, 2}, "pelvis_front", "pelvis pieces")};
     const Diagnosis diagnosis =
-        diagnose(garment, two_batches(), {}, verdict, seeds, kFirstPassEdge);
+        diagnose(garment, two_batches(), {}, verdict, {{0, 4, seeds}}, kFirstPassEdge);
     const auto reseeds = std::count_if(
         diagnosis.actions.begin(), diagnosis.actions.end(),
         [](const RecoveryAction& action) { return action.kind == RecoveryActionKind::Reseed; });
@@ -118,6 +119,40 @@ class DiagnosisTest : public QObject {
     QCOMPARE(reseed->seed->pieces(), (std::vector<int>{1, 2}));
     // After the remeshes, and nothing after it: no crossing to reorder, no near miss.
     QCOMPARE(diagnosis.actions.back().kind, RecoveryActionKind::Reseed);
+  }
+
+  void anOutfitReseedsTheGarmentAtFaultOnly() {
+    // An outfit read the same way: garment 0 = pieces 0-1 (seed 0, batch 0 = piece 1), garment 1 =
+    // pieces 2-3 (its seed piece 2 after batch 0, batch 1 = piece 3), piece 3 misplaced.
+    Garment garment = four_pieces();
+    const char* names[] = {"top:band", "top:front", "skirt:waistband", "skirt:front"};
+    for (int p = 0; p < 4; ++p)
+      garment.pieces[p].name = names[p];
+    SessionReport report;
+    report.seed.parts.push_back({{0}, "chest"});
+    report.outfit_seeds.push_back({1, seed_of({2}, "waist", "waist piece"), 1});
+    report.batches.resize(2);
+    report.batches[0].pieces = {1};
+    report.batches[1].pieces = {3};
+    QualityVerdict verdict;
+    verdict.failures.push_back(failure(FailureKind::Misplaced, {3}, 1));
+    const std::vector<GarmentSeeds> seeds = {
+        {0, 2, {seed_of({0}, "chest", "chest"), seed_of({1}, "neck", "neck")}},
+        {2, 2, {seed_of({2}, "waist", "waist piece"), seed_of({3}, "pelvis_front", "pelvis")}}};
+    const Diagnosis diagnosis = diagnose(garment, report, {}, verdict, seeds, kFirstPassEdge);
+    QCOMPARE(diagnosis.piece_batch, (std::vector<int>{-1, 0, 1, 1}));
+    std::vector<const RecoveryAction*> reseeds;
+    for (const RecoveryAction& action : diagnosis.actions)
+      if (action.kind == RecoveryActionKind::Reseed) reseeds.push_back(&action);
+    QCOMPARE(reseeds.size(), std::size_t(1));  // the skirt's other seed; the top is not at fault
+    QCOMPARE(reseeds[0]->outfit_garment, 1);
+    QCOMPARE(reseeds[0]->resume_batch, 1);  // the skirt's seed came after batch 0
+    QCOMPARE(reseeds[0]->seed->pieces(), (std::vector<int>{3}));
+    const SessionOptions options = apply_action(*reseeds[0], SessionOptions{});
+    QVERIFY(!options.seed);  // the first garment keeps its own
+    QCOMPARE(options.outfit_seeds.size(), std::size_t(2));
+    QVERIFY(!options.outfit_seeds[0]);
+    QCOMPARE(options.outfit_seeds[1]->pieces(), (std::vector<int>{3}));
   }
 
   void everyFailureTriesOtherMeshesFirst() {

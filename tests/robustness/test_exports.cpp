@@ -20,19 +20,13 @@
 #include "engine/io/garment_obj.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/quality/flat_placement.h"
+#include "support/garment_init_process.h"
 #include "support/test_paths.h"
 
 using namespace garment;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string contents(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 int entries(const fs::path& folder) {
   int count = 0;
@@ -81,13 +75,13 @@ class ExportsTest : public QObject {
   void exportWritesAFile() {
     const fs::path out = dir_ / "garment.obj";
     write_garment_obj(out, garment_, positions_);
-    QCOMPARE(contents(out), format_garment_obj(garment_, positions_));
+    QCOMPARE(test::file_contents(out), format_garment_obj(garment_, positions_));
     QCOMPARE(read_garment_obj(out, garment_).rows(), garment_.vertex_count());
     QCOMPARE(entries(dir_), 2);  // pattern.json, garment.obj: no temporary left
   }
 
   void neverOverwritesTheInputPattern() {
-    const std::string before = contents(pattern_path_);
+    const std::string before = test::file_contents(pattern_path_);
     fs::create_hard_link(pattern_path_, dir_ / "same_file.obj");
     for (const fs::path& target :
          {pattern_path_, dir_ / "same_file.obj", dir_ / "." / "pattern.json"}) {
@@ -100,7 +94,7 @@ class ExportsTest : public QObject {
                  qPrintable(message));
         QVERIFY2(message.startsWith(QString::fromStdString(target.string())), qPrintable(message));
       }
-      QCOMPARE(contents(pattern_path_), before);
+      QCOMPARE(test::file_contents(pattern_path_), before);
     }
     QCOMPARE(entries(dir_), 2);
   }
@@ -116,7 +110,7 @@ class ExportsTest : public QObject {
     QFETCH(QString, failure);
     const fs::path out = dir_ / "garment.obj";
     write_garment_obj(out, garment_, positions_);
-    const std::string previous = contents(out);
+    const std::string previous = test::file_contents(out);
     QVERIFY(previous.size() > 4096);
 
     Eigen::MatrixX3d moved = positions_;
@@ -140,7 +134,7 @@ class ExportsTest : public QObject {
       qInfo("%s", error.what());
     }
     QVERIFY2(failed, "the failing export did not report a failure");
-    QCOMPARE(contents(out), previous);
+    QCOMPARE(test::file_contents(out), previous);
     QCOMPARE(entries(dir_), 2);  // no temporary file left
   }
 
