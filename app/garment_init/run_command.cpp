@@ -63,11 +63,8 @@ std::vector<int> piece_indices(const Garment& garment, const std::vector<std::st
 // An outfit's crossings between garments, a line per pair of garments that cross.
 void print_outfit_crossings(const Scene& scene, const GarmentMetrics& metrics) {
   if (scene.outfit.empty()) return;
-  std::vector<int> piece_garment;
-  for (std::size_t g = 0; g < scene.outfit.size(); ++g)
-    piece_garment.insert(piece_garment.end(), scene.outfit[g].piece_count, static_cast<int>(g));
   const std::vector<GarmentPairCrossings> pairs =
-      crossings_between_garments(piece_garment, metrics);
+      crossings_between_garments(outfit_piece_garments(scene), metrics);
   if (pairs.empty()) std::printf("  no crossing between garments\n");
   for (const GarmentPairCrossings& pair : pairs)
     std::printf("  %s × %s: %d crossing edges\n", scene.outfit[pair.inner].name.c_str(),

@@ -34,12 +34,9 @@ nlohmann::json seed_json(const Garment& garment, const SeedPlan& plan) {
 nlohmann::json outfit_json(const Scene& scene, const SessionReport& report,
                            const GarmentMetrics& metrics) {
   const Garment& garment = *scene.garment;
-  std::vector<int> piece_garment(garment.pieces.size(), 0);
   nlohmann::json garments = nlohmann::json::array();
   for (std::size_t g = 0; g < scene.outfit.size(); ++g) {
     const OutfitGarment& part = scene.outfit[g];
-    for (int p = part.first_piece; p < part.first_piece + part.piece_count; ++p)
-      piece_garment[p] = static_cast<int>(g);
     const SeedPlan* seed = g == 0 ? &report.seed : nullptr;
     for (const OutfitSeedRecord& later : report.outfit_seeds)
       if (later.garment == static_cast<int>(g)) seed = &later.seed;
@@ -48,7 +45,8 @@ nlohmann::json outfit_json(const Scene& scene, const SessionReport& report,
                         {"seed", seed ? seed_json(garment, *seed) : nlohmann::json()}});
   }
   nlohmann::json crossings = nlohmann::json::array();
-  for (const GarmentPairCrossings& pair : crossings_between_garments(piece_garment, metrics))
+  for (const GarmentPairCrossings& pair :
+       crossings_between_garments(outfit_piece_garments(scene), metrics))
     crossings.push_back({{"inner", scene.outfit[pair.inner].name},
                          {"outer", scene.outfit[pair.outer].name},
                          {"crossing_edges", pair.edges}});

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "engine/pattern/outfit.h"
-
 namespace garment {
 namespace {
 
@@ -116,6 +114,14 @@ Diagnosis diagnose(const Garment& garment, const SessionReport& report,
     if (first == -1 && failure.kind != FailureKind::SeamGap) seed_at_fault = true;
   }
 
+  // The garment of an outfit each piece belongs to (-1 outside every garment of `seeds`).
+  const auto garment_of = [&](int piece) {
+    for (std::size_t g = 0; g < seeds.size(); ++g)
+      if (piece >= seeds[g].first_piece && piece < seeds[g].first_piece + seeds[g].piece_count)
+        return static_cast<int>(g);
+    return -1;
+  };
+
   ActionList actions;
   if (near_miss(verdict))
     actions.add({RecoveryActionKind::SettleLonger, batch_count, {}, {}, "a near miss"});
@@ -147,9 +153,7 @@ Diagnosis diagnose(const Garment& garment, const SessionReport& report,
     if (batch_of(earlier) < -1) continue;  // a piece never arranged
     // Two garments of an outfit: the order of the garments decides which is outside, not the
     // order of their batches (a later garment's pieces wait for its seed).
-    if (outfit_garment_of(garment.pieces[earlier].name) !=
-        outfit_garment_of(garment.pieces[later].name))
-      continue;
+    if (garment_of(earlier) != garment_of(later)) continue;
     const std::string pair_names = names(garment, {earlier, later});
     if (batch_of(earlier) == batch_of(later)) {
       if (batch_of(earlier) < 0) continue;  // both in the seed
@@ -184,9 +188,6 @@ Diagnosis diagnose(const Garment& garment, const SessionReport& report,
   // whose pieces are misplaced; from just before that seed.
   for (std::size_t g = 0; g < seeds.size(); ++g) {
     const GarmentSeeds& own = seeds[g];
-    const auto owns = [&](int piece) {
-      return piece >= own.first_piece && piece < own.first_piece + own.piece_count;
-    };
     const SeedPlan* in_use = g == 0 ? &report.seed : nullptr;
     int resume_batch = -1;
     for (const OutfitSeedRecord& later : report.outfit_seeds)
@@ -199,7 +200,7 @@ Diagnosis diagnose(const Garment& garment, const SessionReport& report,
     bool own_seed_at_fault = g == 0 && seed_at_fault, misplaced = false;
     for (const QualityFailure& failure : verdict.failures)
       for (int piece : failure.pieces) {
-        if (!owns(piece)) continue;
+        if (garment_of(piece) != static_cast<int>(g)) continue;
         misplaced = misplaced || failure.kind == FailureKind::Misplaced;
         if (g > 0 && failure.kind != FailureKind::SeamGap &&
             std::find(seed_pieces.begin(), seed_pieces.end(), piece) != seed_pieces.end())

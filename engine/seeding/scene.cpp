@@ -61,6 +61,14 @@ std::shared_ptr<const Scene> load_scene(const std::filesystem::path& pattern,
   return make_scene(std::move(garment), std::move(loaded), options);
 }
 
+std::vector<int> outfit_piece_garments(const Scene& scene) {
+  std::vector<int> garments(scene.garment->pieces.size(), 0);
+  for (std::size_t g = 0; g < scene.outfit.size(); ++g)
+    std::fill_n(garments.begin() + scene.outfit[g].first_piece, scene.outfit[g].piece_count,
+                static_cast<int>(g));
+  return garments;
+}
+
 std::shared_ptr<const Scene> load_outfit_scene(const std::vector<std::filesystem::path>& patterns,
                                                const std::filesystem::path& body,
                                                const SceneOptions& options, Observer* observer) {

@@ -49,6 +49,9 @@ std::shared_ptr<const Scene> load_scene(const std::filesystem::path& pattern,
                                         const SceneOptions& options = {},
                                         Observer* observer = nullptr);
 
+// #pieces: the garment of Scene::outfit each piece belongs to (all 0 for one garment).
+std::vector<int> outfit_piece_garments(const Scene& scene);
+
 // Several patterns worn on one body, the first innermost (pattern/outfit.h): one garment of all
 // their pieces, each garment classified and seeded on its own. Throws InputError as load_scene,
 // and for two files with the same garment name.

@@ -97,11 +97,7 @@ Session::~Session() = default;
 void Session::build_arrangement(const Garment& garment) {
   context_ = std::make_unique<ArrangementContext>(garment, scene_->sdf, scene_->body->landmarks,
                                                   options_.arrangement);
-  for (std::size_t g = 0; g < scene_->outfit.size(); ++g) {
-    const OutfitGarment& part = scene_->outfit[g];
-    std::fill_n(context_->piece_garment.begin() + part.first_piece, part.piece_count,
-                static_cast<int>(g));
-  }
+  context_->piece_garment = outfit_piece_garments(*scene_);
   selector_ = std::make_unique<Selector>(garment, options_.arrangement.selection);
   termination_ = std::make_unique<TerminationCheck>(garment);
 }
