@@ -18,12 +18,14 @@
 #include <exception>
 
 #include "engine/body/default_body.h"
+#include "engine/pattern/outfit.h"
 #include "engine/pattern/pattern.h"
 #include "engine/quality/flat_placement.h"
 #include "ui/arrangement_order_list.h"
 #include "ui/avatar_view.h"
 #include "ui/bundled_resources.h"
 #include "ui/help_dialogs.h"
+#include "ui/outfit_layer_list.h"
 #include "ui/pattern_view.h"
 #include "ui/quality_panel.h"
 #include "ui/recent_files.h"
@@ -75,6 +77,18 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
   status_bar_ = new ArrangementStatusBar(this);
   setStatusBar(status_bar_);
+  // Before the docks: the Outfit dock carries it as a button too.
+  add_garment_ = new QAction(tr("&Add garment…"), this);
+  add_garment_->setShortcut(QKeySequence(tr("Ctrl+Shift+A")));
+  add_garment_->setToolTip(tr("Add a garment worn over the ones open"));
+  add_garment_->setEnabled(false);
+  connect(add_garment_, &QAction::triggered, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(
+        this, tr("Add garment"),
+        QFileInfo(pattern_paths_.isEmpty() ? QString() : pattern_paths_.back()).absolutePath(),
+        tr("GarmentCode patterns (*.json)"));
+    if (!path.isEmpty()) addGarment(path);
+  });
   createDocks();
   createActions();
   setAcceptDrops(true);
@@ -138,6 +152,11 @@ void MainWindow::createDocks() {
           &MainWindow::arrangementOrderChanged);
   add_dock(tr("Arrangement order"), "order_dock", order_list_);
 
+  outfit_list_ = new OutfitLayerList(add_garment_, this);
+  connect(outfit_list_, &OutfitLayerList::orderChanged, this, &MainWindow::setOutfitOrder);
+  connect(outfit_list_, &OutfitLayerList::removeRequested, this, &MainWindow::removeGarment);
+  add_dock(tr("Outfit"), "outfit_dock", outfit_list_);
+
   quality_panel_ = new QualityPanel(this);
   connect(quality_panel_, &QualityPanel::piecesChosen, this, [this](const QList<int>& pieces) {
     selectPieces(pieces);
@@ -149,9 +168,9 @@ void MainWindow::createDocks() {
 void MainWindow::createActions() {
   QMenu* file_menu = menuBar()->addMenu(tr("&File"));
   QAction* open_pattern = file_menu->addAction(tr("Open &pattern…"), this, [this] {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open pattern"),
-                                                      QFileInfo(pattern_path_).absolutePath(),
-                                                      tr("GarmentCode patterns (*.json)"));
+    const QString path = QFileDialog::getOpenFileName(
+        this, tr("Open pattern"), QFileInfo(pattern_paths_.value(0)).absolutePath(),
+        tr("GarmentCode patterns (*.json)"));
     if (!path.isEmpty()) openPattern(path);
   });
   open_pattern->setShortcut(QKeySequence::Open);
@@ -161,6 +180,7 @@ void MainWindow::createActions() {
     if (!path.isEmpty()) openBody(path);
   });
   open_body->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
+  file_menu->addAction(add_garment_);
   recent_menu_ = file_menu->addMenu(tr("Open &recent"));
   connect(recent_menu_, &QMenu::aboutToShow, this, &MainWindow::rebuildRecentFilesMenu);
   rebuildRecentFilesMenu();
@@ -315,23 +335,87 @@ bool MainWindow::openDefaultBody() {
 }
 
 bool MainWindow::openPatternFile(const QString& path, bool remember) {
-  std::shared_ptr<const Garment> garment;
+  std::vector<Pattern> patterns;
   try {
-    BusyCursor busy;
-    garment = std::make_shared<const Garment>(build_garment(load_pattern(path.toStdString())));
+    patterns.push_back(load_pattern(path.toStdString()));
   } catch (const std::exception& error) {
     presentError(tr("Cannot open pattern"), QString::fromStdString(error.what()));
     return false;
   }
+  if (!showOutfit(std::move(patterns), {outfit_garment_name(path.toStdString())}, {path},
+                  tr("Cannot open pattern")))
+    return false;
+  // A location chosen for the old pattern's seed: it would seed the new one where nobody chose to.
+  location_list_->setCurrentRow(-1);
+  if (remember) RecentFiles::add(path);
+  return true;
+}
+
+bool MainWindow::addGarment(const QString& path) {
+  std::vector<Pattern> patterns = outfit_patterns_;
+  try {
+    patterns.push_back(load_pattern(path.toStdString()));
+  } catch (const std::exception& error) {
+    presentError(tr("Cannot add garment"), QString::fromStdString(error.what()));
+    return false;
+  }
+  std::vector<std::string> names = outfit_names_;
+  names.push_back(outfit_garment_name(path.toStdString()));
+  return showOutfit(std::move(patterns), std::move(names), QStringList(pattern_paths_) << path,
+                    tr("Cannot add garment"));
+}
+
+void MainWindow::setOutfitOrder(const QList<int>& order) {
+  if (order.size() != static_cast<int>(outfit_patterns_.size())) return;
+  std::vector<Pattern> patterns;
+  std::vector<std::string> names;
+  QStringList paths;
+  for (int layer : order) {
+    patterns.push_back(outfit_patterns_[static_cast<std::size_t>(layer)]);
+    names.push_back(outfit_names_[static_cast<std::size_t>(layer)]);
+    paths << pattern_paths_[layer];
+  }
+  showOutfit(std::move(patterns), std::move(names), paths, tr("Cannot reorder the outfit"));
+}
+
+void MainWindow::removeGarment(int layer) {
+  if (layer < 0 || layer >= static_cast<int>(outfit_patterns_.size()) ||
+      outfit_patterns_.size() < 2)
+    return;
+  std::vector<Pattern> patterns = outfit_patterns_;
+  std::vector<std::string> names = outfit_names_;
+  QStringList paths = pattern_paths_;
+  patterns.erase(patterns.begin() + layer);
+  names.erase(names.begin() + layer);
+  paths.removeAt(layer);
+  showOutfit(std::move(patterns), std::move(names), paths, tr("Cannot remove the garment"));
+}
+
+bool MainWindow::showOutfit(std::vector<Pattern> patterns, std::vector<std::string> names,
+                            QStringList paths, const QString& error_title) {
+  std::shared_ptr<const Garment> garment;
+  try {
+    BusyCursor busy;
+    // One pattern keeps its panels' own names; an outfit's are GARMENT:PANEL.
+    garment = std::make_shared<const Garment>(
+        build_garment(patterns.size() == 1 ? patterns.front() : merge_patterns(patterns, names)));
+  } catch (const std::exception& error) {
+    presentError(error_title, QString::fromStdString(error.what()));
+    return false;
+  }
   garment_ = garment;
-  pattern_path_ = path;
+  outfit_patterns_ = std::move(patterns);
+  outfit_names_ = std::move(names);
+  pattern_paths_ = std::move(paths);
   pattern_view_->setGarment(garment_);
   avatar_view_->setGarment(garment_);
   classifier_model_->setClassifications({}, {});
   clearArrangement();
-  // A location chosen for the old pattern's seed: it would seed the new one where nobody chose to.
-  location_list_->setCurrentRow(-1);
-  if (remember) RecentFiles::add(path);
+  QStringList layer_names;
+  for (const std::string& name : outfit_names_)
+    layer_names << QString::fromStdString(name);
+  outfit_list_->setLayers(layer_names);
+  add_garment_->setEnabled(true);
   updateTitle();
   Q_EMIT garmentOpened(garment_);
   return true;
@@ -366,7 +450,10 @@ bool MainWindow::openBodyFile(const QString& path, bool remember) {
 
 void MainWindow::updateTitle() {
   QStringList parts;
-  if (!pattern_path_.isEmpty()) parts << QFileInfo(pattern_path_).fileName();
+  QStringList patterns;
+  for (const QString& path : pattern_paths_)
+    patterns << QFileInfo(path).fileName();
+  if (!patterns.isEmpty()) parts << patterns.join(tr(" + "));
   if (!body_path_.isEmpty()) parts << QFileInfo(body_path_).fileName();
   setWindowTitle(parts.isEmpty() ? tr("garment-studio")
                                  : tr("%1 — garment-studio").arg(parts.join(tr(" on "))));
@@ -426,6 +513,7 @@ void MainWindow::clearArrangement() {
   status_bar_->setStatus({});
   setQualityVerdict(std::nullopt, {});
   quality_panel_->setAttempts({}, -1, false);
+  outfit_list_->setCrossingsBetweenGarments({});
 }
 
 void MainWindow::selectPieces(const QList<int>& pieces) {

@@ -3,7 +3,8 @@
 // docks for the classifier's verdict, the body locations, the arrangement order and the garment's
 // quality, and a status bar for the arrangement's progress. Opens patterns and bodies (menus,
 // recent files, drag and drop); a file that fails to open is reported and leaves what is open
-// untouched.
+// untouched. Several patterns open at once are an outfit (File › Add garment…, the Outfit dock):
+// garment() is then all their pieces as one garment, named GARMENT:PANEL (pattern/outfit.h).
 //
 // The arrangement session plugs in from outside through plain data: the set* functions below take
 // what a session snapshot holds, the signals carry what the user asked for, and sessionActions()
@@ -19,6 +20,7 @@
 
 #include "engine/body/body.h"
 #include "engine/pattern/garment_mesh.h"
+#include "engine/pattern/pattern.h"
 #include "engine/quality/verdict.h"
 #include "engine/recovery/cannot_fit.h"
 #include "ui/arrangement_status_bar.h"
@@ -40,6 +42,7 @@ namespace garment::ui {
 
 class ArrangementOrderList;
 class AvatarView;
+class OutfitLayerList;
 class PatternView;
 class QualityPanel;
 
@@ -69,6 +72,15 @@ class MainWindow : public QMainWindow {
   // Files. On failure the error is presented, false returned, and the open pattern and body stay.
   bool openPattern(const QString& path);
   bool openBody(const QString& path);
+  // Outfits: a garment worn over the ones open (the outermost layer). On failure (a bad file, a
+  // garment of the same name, other units) the error is presented and the outfit stays.
+  bool addGarment(const QString& path);
+  // The outfit's layers in a new order: order[i] is the layer (before the change) now at layer i.
+  void setOutfitOrder(const QList<int>& order);
+  void removeGarment(int layer);
+  // The patterns open, innermost first, and their garments' names (outfit_garment_name).
+  const std::vector<Pattern>& outfitPatterns() const { return outfit_patterns_; }
+  const std::vector<std::string>& outfitNames() const { return outfit_names_; }
   // The bundled demo pattern and default body (resources/), not remembered among the recent
   // files.
   bool openDemoPattern();
@@ -110,6 +122,8 @@ class MainWindow : public QMainWindow {
   AvatarView* avatarView() const { return avatar_view_; }
   ArrangementOrderList* orderList() const { return order_list_; }
   QListWidget* locationList() const { return location_list_; }
+  OutfitLayerList* outfitList() const { return outfit_list_; }
+  QAction* addGarmentAction() const { return add_garment_; }
   ClassifierTableModel* classifierModel() const { return classifier_model_; }
   ArrangementStatusBar* arrangementStatusBar() const { return status_bar_; }
   QualityPanel* qualityPanel() const { return quality_panel_; }
@@ -147,6 +161,10 @@ class MainWindow : public QMainWindow {
   void openRecent(const QString& path);
   bool openPatternFile(const QString& path, bool remember);
   bool openBodyFile(const QString& path, bool remember);
+  // Shows these patterns as the open garment (an outfit when more than one) and tells the session;
+  // on failure presents the error under `error_title` and changes nothing.
+  bool showOutfit(std::vector<Pattern> patterns, std::vector<std::string> names, QStringList paths,
+                  const QString& error_title);
   void presentError(const QString& title, const QString& message);
   // Shows no arrangement: the garment as its file lays it out, every piece waiting, no order,
   // progress or verdict.
@@ -163,6 +181,8 @@ class MainWindow : public QMainWindow {
   QListWidget* location_list_ = nullptr;
   ArrangementOrderList* order_list_ = nullptr;
   QualityPanel* quality_panel_ = nullptr;
+  OutfitLayerList* outfit_list_ = nullptr;
+  QAction* add_garment_ = nullptr;
   ArrangementStatusBar* status_bar_ = nullptr;
   QMenu* recent_menu_ = nullptr;
   QMenu* view_menu_ = nullptr;
@@ -175,7 +195,10 @@ class MainWindow : public QMainWindow {
 
   std::shared_ptr<const Garment> garment_;
   std::shared_ptr<const Body> body_;
-  QString pattern_path_, body_path_;
+  std::vector<Pattern> outfit_patterns_;
+  std::vector<std::string> outfit_names_;
+  QStringList pattern_paths_;  // innermost first
+  QString body_path_;
 };
 
 }  // namespace garment::ui

@@ -140,11 +140,15 @@ void SessionThread::emptyOutbox() {
 }
 
 void SessionThread::openScene(std::shared_ptr<const Garment> garment,
-                              std::shared_ptr<const Body> body, SessionOptions options) {
+                              std::shared_ptr<const Body> body, SessionOptions options,
+                              std::vector<Pattern> outfit_patterns,
+                              std::vector<std::string> outfit_names) {
   Command command(Command::Open);
   command.garment = std::move(garment);
   command.body = std::move(body);
   command.options = std::move(options);
+  command.outfit_patterns = std::move(outfit_patterns);
+  command.outfit_names = std::move(outfit_names);
   post(std::move(command), true);
 }
 
@@ -327,10 +331,14 @@ void SessionThread::execute(const Command& command) {
         options_ = command.options;
         verdict_.reset();
         cannot_fit_.reset();
+        between_garments_.reset();
         checker_.reset();
         body_reference_.reset();
         scene_.reset();
-        scene_ = make_scene(command.garment, command.body);
+        scene_ = command.outfit_patterns.size() > 1
+                     ? make_outfit_scene(command.garment, command.outfit_patterns,
+                                         command.outfit_names, command.body)
+                     : make_scene(command.garment, command.body);
         session_ = std::make_shared<Session>(scene_, options_);
         phases_completed_ = 0;
         last_iterations_ = 0;
@@ -507,6 +515,7 @@ void SessionThread::showAttempt(int index) {
     scene_ = session_->shared_scene();
   }
   verdict_ = attempts_[static_cast<std::size_t>(index)].verdict;
+  between_garments_.reset();
   running_ = false;
   steps_requested_ = 0;
   // The attempt's own checkpoints (a resumed attempt keeps those between batches before it).
@@ -579,18 +588,25 @@ void SessionThread::publishState() {
   // Judged once per ending: a command that changes a done session's garment (reset, reseed,
   // reorder, an earlier checkpoint) leaves the session not done, and every command is followed by
   // a state; the others keep the garment that was judged.
+  const bool outfit = !scene_->outfit.empty();
   if (!state.done) {
     verdict_.reset();
     cannot_fit_.reset();
-  } else if (!verdict_) {
+    between_garments_.reset();
+  } else if (!verdict_ || (outfit && !between_garments_)) {
     const GarmentMetrics metrics = checker().measure(session_->positions());
-    verdict_ = judge_garment(*scene_->garment, metrics);
-    if (verdict_->failed(FailureKind::Strain))
-      cannot_fit_ =
-          find_cannot_fit(*scene_->garment, metrics, *scene_->body, QualityThresholds{}.max_strain);
+    if (!verdict_) {
+      verdict_ = judge_garment(*scene_->garment, metrics);
+      if (verdict_->failed(FailureKind::Strain))
+        cannot_fit_ = find_cannot_fit(*scene_->garment, metrics, *scene_->body,
+                                      QualityThresholds{}.max_strain);
+    }
+    if (outfit)
+      between_garments_ = crossings_between_garments(outfit_piece_garments(*scene_), metrics);
   }
   state.verdict = verdict_;
   state.cannot_fit = cannot_fit_;
+  state.between_garments = between_garments_;
   state.attempts = attempts_;
   state.attempt_shown = attempt_shown_;
   state.fixing = fixing_;

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "engine/quality/garment_metrics.h"
+#include "engine/quality/outfit_crossings.h"
 #include "engine/quality/verdict.h"
 #include "engine/recovery/recovery.h"
 #include "engine/session/session.h"
@@ -84,6 +85,9 @@ struct SessionState {
   // A design no arrangement can pass (recovery/cannot_fit.h), found when a done garment fails on
   // strain: the opening, its length and the body's.
   std::optional<CannotFit> cannot_fit;
+  // An outfit's crossings between garments once the session is done (quality/outfit_crossings.h;
+  // an empty list: none cross); nullopt for one garment or before.
+  std::optional<std::vector<GarmentPairCrossings>> between_garments;
   // Fix automatically (recovery/recovery.h): the first pass and every attempt so far, live while
   // `fixing`; the garment shown is attempts[attempt_shown] (-1: no fix since the last change).
   std::vector<AttemptRecord> attempts;
@@ -103,9 +107,11 @@ class SessionThread : public QThread {
   ~SessionThread() override;
 
   // A new session on this garment and body (the scene is built on the worker). Options apply to
-  // this and later sessions.
+  // this and later sessions. An outfit (more than one pattern, innermost first, with their
+  // garments' names) makes an outfit scene; `garment` is then their merge (scene.h).
   void openScene(std::shared_ptr<const Garment> garment, std::shared_ptr<const Body> body,
-                 SessionOptions options = {});
+                 SessionOptions options = {}, std::vector<Pattern> outfit_patterns = {},
+                 std::vector<std::string> outfit_names = {});
   void runSession();
   void pauseSession();
   void stepSession();
@@ -179,6 +185,8 @@ class SessionThread : public QThread {
     std::shared_ptr<const Garment> garment;
     std::shared_ptr<const Body> body;
     SessionOptions options;
+    std::vector<Pattern> outfit_patterns;
+    std::vector<std::string> outfit_names;
     std::optional<SeedPlan> seed;
     std::vector<int> order;
     bool run_after = false;
@@ -242,6 +250,7 @@ class SessionThread : public QThread {
   std::unique_ptr<GarmentChecker> checker_;
   std::optional<QualityVerdict> verdict_;  // of the done session's garment
   std::optional<CannotFit> cannot_fit_;    // of the done session's garment
+  std::optional<std::vector<GarmentPairCrossings>> between_garments_;  // of a done outfit
   // The last fix: its records and sessions, the first pass first (index-aligned).
   std::vector<AttemptRecord> attempts_;
   std::vector<std::shared_ptr<Session>> attempt_sessions_;

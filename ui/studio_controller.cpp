@@ -18,6 +18,7 @@
 #include "ui/avatar_view.h"
 #include "ui/main_window.h"
 #include "ui/manual_seed_panel.h"
+#include "ui/outfit_layer_list.h"
 #include "ui/quality_panel.h"
 
 namespace garment::ui {
@@ -175,7 +176,8 @@ void StudioController::openSession() {
   opening_ = true;
   shown_scene_.reset();
   undo_.clear();  // the edits were of the session replaced
-  thread_->openScene(window_->garment(), window_->body(), options_);
+  thread_->openScene(window_->garment(), window_->body(), options_, window_->outfitPatterns(),
+                     window_->outfitNames());
   if (run_when_opened_) {
     thread_->runSession();
     run_when_opened_ = false;
@@ -292,6 +294,18 @@ void StudioController::showVerdict(const SessionState& state, ArrangementStatus&
       names << QString::fromStdString(piece.name);
   window_->setQualityVerdict(state.verdict, names, state.cannot_fit);
   window_->qualityPanel()->setAttempts(state.attempts, state.attempt_shown, state.fixing);
+  QStringList between;
+  if (state.between_garments && state.scene) {
+    const auto garment_name = [&](int garment) {
+      return QString::fromStdString(state.scene->outfit[static_cast<std::size_t>(garment)].name);
+    };
+    for (const GarmentPairCrossings& pair : *state.between_garments)
+      between << tr("%1 × %2: %3 crossing edges")
+                     .arg(garment_name(pair.inner), garment_name(pair.outer))
+                     .arg(pair.edges);
+    if (between.isEmpty()) between << tr("no crossing between garments");
+  }
+  window_->outfitList()->setCrossingsBetweenGarments(between);
   status.quality_failures.reset();
   if (!state.verdict) return;
   QStringList failures;

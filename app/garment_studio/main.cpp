@@ -1,10 +1,12 @@
 // garment-studio: the desktop editor. Wiring only; the window lives in ui/.
 //
-//   garment-studio [PATTERN.json] [--body BODY.obj] [--run | --steps N] [--select PIECE[,PIECE…]]
+//   garment-studio [PATTERN.json [OUTER.json…]] [--body BODY.obj] [--run | --steps N] [--select
+//   PIECE[,PIECE…]]
 //                  [--location NAME] [--click-location NAME] [--seed] [--arrange-next PIECE]
 //                  [--fix] [--actions NAME[,NAME…]] [--threads N]
 //                  [--screenshot OUT.png [--after-ms N] [--when-idle]] [--size WIDTHxHEIGHT]
-// Without a pattern the bundled demo opens, without a body the bundled default body. --run starts
+// Without a pattern the bundled demo opens, without a body the bundled default body. Several
+// patterns open as an outfit, the first innermost (as `garment-init run` takes them). --run starts
 // the arrangement at once; --steps runs that many phases; --seed seeds the arrangement with the
 // selected pieces at the chosen location and runs; --click-location clicks that location's marker
 // in the 3D view once the session is ready; --arrange-next, once the arrangement is done, arranges
@@ -49,7 +51,9 @@ int main(int argc, char** argv) {
   parser.setApplicationDescription("Turns a sewing pattern into a 3D garment on a body.");
   parser.addHelpOption();
   parser.addPositionalArgument("pattern",
-                               "GarmentCode pattern (.json); the bundled demo if absent.");
+                               "GarmentCode pattern (.json); the bundled demo if absent. More "
+                               "patterns: an outfit, the first innermost.",
+                               "[pattern…]");
   const QCommandLineOption body_option("body", "Body mesh (.obj).", "file");
   const QCommandLineOption run_option("run", "Start the arrangement at launch.");
   const QCommandLineOption steps_option("steps", "Run this many phases at launch.", "n");
@@ -86,7 +90,7 @@ int main(int argc, char** argv) {
   const QRegularExpressionMatch size =
       QRegularExpression("^(\\d+)x(\\d+)$").match(parser.value(size_option));
   if (!delay_ok || delay_ms < 0 || !steps_ok || steps < 0 || !threads_ok || threads < 0 ||
-      (parser.isSet(size_option) && !size.hasMatch()) || parser.positionalArguments().size() > 1) {
+      (parser.isSet(size_option) && !size.hasMatch())) {
     std::fprintf(stderr, "garment-studio: bad arguments (see --help)\n");
     return 2;
   }
@@ -114,6 +118,8 @@ int main(int argc, char** argv) {
   const QStringList positional = parser.positionalArguments();
   bool opened =
       positional.isEmpty() ? window.openDemoPattern() : window.openPattern(positional.front());
+  for (qsizetype i = 1; opened && i < positional.size(); ++i)
+    opened = window.addGarment(positional[i]);
   opened = (parser.isSet(body_option) ? window.openBody(parser.value(body_option))
                                       : window.openDefaultBody()) &&
            opened;

@@ -1,5 +1,7 @@
 #include "engine/seeding/scene.h"
 
+#include <stdexcept>
+
 #include "engine/pattern/outfit.h"
 #include "engine/quality/flat_placement.h"
 
@@ -88,11 +90,22 @@ std::shared_ptr<const Scene> make_outfit_scene(const std::vector<Pattern>& patte
                                                const std::vector<std::string>& names,
                                                std::shared_ptr<const Body> body,
                                                const SceneOptions& options, Observer* observer) {
+  auto merged = std::make_shared<const Garment>(
+      build_garment(merge_patterns(patterns, names), options.meshing, observer));
+  return make_outfit_scene(std::move(merged), patterns, names, std::move(body), options);
+}
+
+std::shared_ptr<const Scene> make_outfit_scene(std::shared_ptr<const Garment> merged,
+                                               const std::vector<Pattern>& patterns,
+                                               const std::vector<std::string>& names,
+                                               std::shared_ptr<const Body> body,
+                                               const SceneOptions& options) {
   std::vector<OutfitPart> parts;
-  const Pattern merged = merge_patterns(patterns, names, &parts);
+  const Pattern merged_pattern = merge_patterns(patterns, names, &parts);
+  if (merged->pieces.size() != merged_pattern.panels.size())
+    throw std::invalid_argument("make_outfit_scene: the garment is not these patterns merged");
   auto scene = std::make_shared<Scene>();
-  scene->garment =
-      std::make_shared<const Garment>(build_garment(merged, options.meshing, observer));
+  scene->garment = std::move(merged);
   scene->body = std::move(body);
   scene->sdf = std::shared_ptr<const DistanceGrid>(scene->body, &scene->body->distance.grid);
   // Each garment classified and seeded as if it were alone: the classifier's graph and the seed's

@@ -66,6 +66,13 @@ std::shared_ptr<const Scene> make_outfit_scene(const std::vector<Pattern>& patte
                                                std::shared_ptr<const Body> body,
                                                const SceneOptions& options = {},
                                                Observer* observer = nullptr);
+// The same with the merged garment already built (the editor shows it before a session opens):
+// `merged` must be build_garment of merge_patterns(patterns, names) with options.meshing.
+std::shared_ptr<const Scene> make_outfit_scene(std::shared_ptr<const Garment> merged,
+                                               const std::vector<Pattern>& patterns,
+                                               const std::vector<std::string>& names,
+                                               std::shared_ptr<const Body> body,
+                                               const SceneOptions& options = {});
 
 // From parts already loaded (the editor keeps the body when the pattern changes, and back).
 std::shared_ptr<const Scene> make_scene(std::shared_ptr<const Garment> garment,

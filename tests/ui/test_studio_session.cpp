@@ -391,9 +391,13 @@ class StudioSessionTest : public QObject, test::StudioHarness {
   }
 
   void stopMidSolveLeavesAConsistentSession() {
-    // The full budgets give long solves to stop in; under the sanitizers the quick ones are long
-    // enough, and the run to the end after the stop takes seconds instead of a minute.
-    open(test::sanitizer_build() ? test::quick_options() : SessionOptions{});
+    // A long alignment solve to stop in: the demo's full budgets end the whole arrangement in about
+    // a second on two threads, sometimes before the first live update is due, and then nothing is
+    // left to stop. Under the sanitizers the quick budgets are long enough, and the run to the end
+    // after the stop takes seconds instead of a minute.
+    SessionOptions options;
+    options.arrangement.align = {3000, 3000};
+    open(test::sanitizer_build() ? test::quick_options() : options);
     // Into the first batch's solves (the seed's snapshots come fast and the batch's phases are the
     // longest): step to Align, then run and stop during the solve.
     while (state().phase != Phase::Align) {
