@@ -31,7 +31,6 @@ Pattern merge_patterns(const std::vector<Pattern>& patterns, const std::vector<s
     throw std::invalid_argument("merge_patterns: one name per pattern, at least one pattern");
   Pattern merged;
   merged.units_in_meter = patterns.front().units_in_meter;
-  if (parts) parts->clear();
   for (std::size_t g = 0; g < patterns.size(); ++g) {
     const Pattern& pattern = patterns[g];
     for (std::size_t other = 0; other < g; ++other)
@@ -56,9 +55,21 @@ Pattern merge_patterns(const std::vector<Pattern>& patterns, const std::vector<s
       merged.stitches.push_back(stitch);
     }
     merged.source += (g ? " + " : "") + pattern.source;
-    if (parts) parts->push_back({names[g], offset, static_cast<int>(pattern.panels.size())});
   }
+  if (parts) *parts = outfit_parts(patterns, names);
   return merged;
+}
+
+std::vector<OutfitPart> outfit_parts(const std::vector<Pattern>& patterns,
+                                     const std::vector<std::string>& names) {
+  std::vector<OutfitPart> parts;
+  int offset = 0;
+  for (std::size_t g = 0; g < patterns.size() && g < names.size(); ++g) {
+    const int count = static_cast<int>(patterns[g].panels.size());
+    parts.push_back({names[g], offset, count});
+    offset += count;
+  }
+  return parts;
 }
 
 Pattern load_outfit_pattern(const std::vector<std::filesystem::path>& files,

@@ -35,6 +35,10 @@ std::string_view outfit_garment_of(std::string_view piece_name);
 Pattern merge_patterns(const std::vector<Pattern>& patterns, const std::vector<std::string>& names,
                        std::vector<OutfitPart>* parts = nullptr);
 
+// Where each garment's panels are in merge_patterns(patterns, names), without merging them.
+std::vector<OutfitPart> outfit_parts(const std::vector<Pattern>& patterns,
+                                     const std::vector<std::string>& names);
+
 // The files loaded (load_pattern) and merged under their outfit_garment_names.
 Pattern load_outfit_pattern(const std::vector<std::filesystem::path>& files,
                             std::vector<OutfitPart>* parts = nullptr);

@@ -100,9 +100,10 @@ std::shared_ptr<const Scene> make_outfit_scene(std::shared_ptr<const Garment> me
                                                const std::vector<std::string>& names,
                                                std::shared_ptr<const Body> body,
                                                const SceneOptions& options) {
-  std::vector<OutfitPart> parts;
-  const Pattern merged_pattern = merge_patterns(patterns, names, &parts);
-  if (merged->pieces.size() != merged_pattern.panels.size())
+  const std::vector<OutfitPart> parts = outfit_parts(patterns, names);
+  if (parts.empty() || patterns.size() != names.size() ||
+      static_cast<int>(merged->pieces.size()) !=
+          parts.back().first_panel + parts.back().panel_count)
     throw std::invalid_argument("make_outfit_scene: the garment is not these patterns merged");
   auto scene = std::make_shared<Scene>();
   scene->garment = std::move(merged);
