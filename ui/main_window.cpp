@@ -85,7 +85,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(add_garment_, &QAction::triggered, this, [this] {
     const QString path = QFileDialog::getOpenFileName(
         this, tr("Add garment"),
-        QFileInfo(pattern_paths_.isEmpty() ? QString() : pattern_paths_.back()).absolutePath(),
+        QFileInfo(layers_.empty() ? QString() : layers_.back().path).absolutePath(),
         tr("GarmentCode patterns (*.json)"));
     if (!path.isEmpty()) addGarment(path);
   });
@@ -169,7 +169,8 @@ void MainWindow::createActions() {
   QMenu* file_menu = menuBar()->addMenu(tr("&File"));
   QAction* open_pattern = file_menu->addAction(tr("Open &pattern…"), this, [this] {
     const QString path = QFileDialog::getOpenFileName(
-        this, tr("Open pattern"), QFileInfo(pattern_paths_.value(0)).absolutePath(),
+        this, tr("Open pattern"),
+        QFileInfo(layers_.empty() ? QString() : layers_.front().path).absolutePath(),
         tr("GarmentCode patterns (*.json)"));
     if (!path.isEmpty()) openPattern(path);
   });
@@ -335,16 +336,14 @@ bool MainWindow::openDefaultBody() {
 }
 
 bool MainWindow::openPatternFile(const QString& path, bool remember) {
-  std::vector<Pattern> patterns;
+  std::vector<OutfitLayer> layers(1);
   try {
-    patterns.push_back(load_pattern(path.toStdString()));
+    layers.front() = {path, load_pattern(path.toStdString())};
   } catch (const std::exception& error) {
     presentError(tr("Cannot open pattern"), QString::fromStdString(error.what()));
     return false;
   }
-  if (!showOutfit(std::move(patterns), {outfit_garment_name(path.toStdString())}, {path},
-                  tr("Cannot open pattern")))
-    return false;
+  if (!showOutfit(std::move(layers), tr("Cannot open pattern"))) return false;
   // A location chosen for the old pattern's seed: it would seed the new one where nobody chose to.
   location_list_->setCurrentRow(-1);
   if (remember) RecentFiles::add(path);
@@ -352,51 +351,60 @@ bool MainWindow::openPatternFile(const QString& path, bool remember) {
 }
 
 bool MainWindow::addGarment(const QString& path) {
-  std::vector<Pattern> patterns = outfit_patterns_;
+  std::vector<OutfitLayer> layers = layers_;
   try {
-    patterns.push_back(load_pattern(path.toStdString()));
+    layers.push_back({path, load_pattern(path.toStdString())});
   } catch (const std::exception& error) {
     presentError(tr("Cannot add garment"), QString::fromStdString(error.what()));
     return false;
   }
-  std::vector<std::string> names = outfit_names_;
-  names.push_back(outfit_garment_name(path.toStdString()));
-  return showOutfit(std::move(patterns), std::move(names), QStringList(pattern_paths_) << path,
-                    tr("Cannot add garment"));
+  return showOutfit(std::move(layers), tr("Cannot add garment"));
 }
 
 void MainWindow::setOutfitOrder(const QList<int>& order) {
-  if (order.size() != static_cast<int>(outfit_patterns_.size())) return;
-  std::vector<Pattern> patterns;
-  std::vector<std::string> names;
-  QStringList paths;
-  for (int layer : order) {
-    patterns.push_back(outfit_patterns_[static_cast<std::size_t>(layer)]);
-    names.push_back(outfit_names_[static_cast<std::size_t>(layer)]);
-    paths << pattern_paths_[layer];
-  }
-  showOutfit(std::move(patterns), std::move(names), paths, tr("Cannot reorder the outfit"));
+  if (order.size() != static_cast<int>(layers_.size())) return;
+  std::vector<OutfitLayer> layers;
+  for (int layer : order)
+    layers.push_back(layers_[static_cast<std::size_t>(layer)]);
+  showOutfit(std::move(layers), tr("Cannot reorder the outfit"));
 }
 
 void MainWindow::removeGarment(int layer) {
-  if (layer < 0 || layer >= static_cast<int>(outfit_patterns_.size()) ||
-      outfit_patterns_.size() < 2)
-    return;
-  std::vector<Pattern> patterns = outfit_patterns_;
-  std::vector<std::string> names = outfit_names_;
-  QStringList paths = pattern_paths_;
-  patterns.erase(patterns.begin() + layer);
-  names.erase(names.begin() + layer);
-  paths.removeAt(layer);
-  showOutfit(std::move(patterns), std::move(names), paths, tr("Cannot remove the garment"));
+  if (layer < 0 || layer >= static_cast<int>(layers_.size()) || layers_.size() < 2) return;
+  std::vector<OutfitLayer> layers = layers_;
+  layers.erase(layers.begin() + layer);
+  showOutfit(std::move(layers), tr("Cannot remove the garment"));
 }
 
-bool MainWindow::showOutfit(std::vector<Pattern> patterns, std::vector<std::string> names,
-                            QStringList paths, const QString& error_title) {
+std::vector<Pattern> MainWindow::outfitPatterns() const {
+  return patternsOf(layers_);
+}
+
+std::vector<std::string> MainWindow::outfitNames() const {
+  return namesOf(layers_);
+}
+
+std::vector<Pattern> MainWindow::patternsOf(const std::vector<OutfitLayer>& layers) {
+  std::vector<Pattern> patterns;
+  for (const OutfitLayer& layer : layers)
+    patterns.push_back(layer.pattern);
+  return patterns;
+}
+
+std::vector<std::string> MainWindow::namesOf(const std::vector<OutfitLayer>& layers) {
+  std::vector<std::string> names;
+  for (const OutfitLayer& layer : layers)
+    names.push_back(outfit_garment_name(layer.path.toStdString()));
+  return names;
+}
+
+bool MainWindow::showOutfit(std::vector<OutfitLayer> layers, const QString& error_title) {
   std::shared_ptr<const Garment> garment;
+  const std::vector<std::string> names = namesOf(layers);
   try {
     BusyCursor busy;
     // One pattern keeps its panels' own names; an outfit's are GARMENT:PANEL.
+    const std::vector<Pattern> patterns = patternsOf(layers);
     garment = std::make_shared<const Garment>(
         build_garment(patterns.size() == 1 ? patterns.front() : merge_patterns(patterns, names)));
   } catch (const std::exception& error) {
@@ -404,15 +412,13 @@ bool MainWindow::showOutfit(std::vector<Pattern> patterns, std::vector<std::stri
     return false;
   }
   garment_ = garment;
-  outfit_patterns_ = std::move(patterns);
-  outfit_names_ = std::move(names);
-  pattern_paths_ = std::move(paths);
+  layers_ = std::move(layers);
   pattern_view_->setGarment(garment_);
   avatar_view_->setGarment(garment_);
   classifier_model_->setClassifications({}, {});
   clearArrangement();
   QStringList layer_names;
-  for (const std::string& name : outfit_names_)
+  for (const std::string& name : names)
     layer_names << QString::fromStdString(name);
   outfit_list_->setLayers(layer_names);
   add_garment_->setEnabled(true);
@@ -451,8 +457,8 @@ bool MainWindow::openBodyFile(const QString& path, bool remember) {
 void MainWindow::updateTitle() {
   QStringList parts;
   QStringList patterns;
-  for (const QString& path : pattern_paths_)
-    patterns << QFileInfo(path).fileName();
+  for (const OutfitLayer& layer : layers_)
+    patterns << QFileInfo(layer.path).fileName();
   if (!patterns.isEmpty()) parts << patterns.join(tr(" + "));
   if (!body_path_.isEmpty()) parts << QFileInfo(body_path_).fileName();
   setWindowTitle(parts.isEmpty() ? tr("garment-studio")

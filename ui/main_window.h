@@ -79,8 +79,8 @@ class MainWindow : public QMainWindow {
   void setOutfitOrder(const QList<int>& order);
   void removeGarment(int layer);
   // The patterns open, innermost first, and their garments' names (outfit_garment_name).
-  const std::vector<Pattern>& outfitPatterns() const { return outfit_patterns_; }
-  const std::vector<std::string>& outfitNames() const { return outfit_names_; }
+  std::vector<Pattern> outfitPatterns() const;
+  std::vector<std::string> outfitNames() const;
   // The bundled demo pattern and default body (resources/), not remembered among the recent
   // files.
   bool openDemoPattern();
@@ -163,8 +163,13 @@ class MainWindow : public QMainWindow {
   bool openBodyFile(const QString& path, bool remember);
   // Shows these patterns as the open garment (an outfit when more than one) and tells the session;
   // on failure presents the error under `error_title` and changes nothing.
-  bool showOutfit(std::vector<Pattern> patterns, std::vector<std::string> names, QStringList paths,
-                  const QString& error_title);
+  struct OutfitLayer {
+    QString path;
+    Pattern pattern;
+  };
+  static std::vector<Pattern> patternsOf(const std::vector<OutfitLayer>& layers);
+  static std::vector<std::string> namesOf(const std::vector<OutfitLayer>& layers);
+  bool showOutfit(std::vector<OutfitLayer> layers, const QString& error_title);
   void presentError(const QString& title, const QString& message);
   // Shows no arrangement: the garment as its file lays it out, every piece waiting, no order,
   // progress or verdict.
@@ -195,9 +200,7 @@ class MainWindow : public QMainWindow {
 
   std::shared_ptr<const Garment> garment_;
   std::shared_ptr<const Body> body_;
-  std::vector<Pattern> outfit_patterns_;
-  std::vector<std::string> outfit_names_;
-  QStringList pattern_paths_;  // innermost first
+  std::vector<OutfitLayer> layers_;  // innermost first
   QString body_path_;
 };
 
