@@ -406,9 +406,10 @@ class StudioSessionTest : public QObject, test::StudioHarness {
                       60000));
     }
     // The steps' solves sent live updates too, and after each the next waits up to
-    // SessionThread::kMaxLivePause (2 s) when drawing is slow (a software rasteriser on a busy
+    // SessionThread::kMaxLivePause when drawing is slow (a software rasteriser on a busy
     // machine): the run could end before one is due, leaving nothing to stop (CI, 1 in ~3 runs).
-    QTest::qWait(2500);
+    // Wait that pause out, and half a second for the event loop.
+    QTest::qWait(static_cast<int>(1000.0 * ui::SessionThread::kMaxLivePause) + 500);
     const int live_before = controller_->liveUpdateCount();
     const int completed = state().phases_completed;
     window_->sessionActions().run_pause->trigger();
