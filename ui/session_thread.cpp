@@ -481,6 +481,7 @@ void SessionThread::fix() {
   first.action = "first pass";
   first.verdict = *verdict_;
   first.rank = rank_verdict(*verdict_);
+  first.between_garments = between_garments_.value_or(std::vector<GarmentPairCrossings>{});
   first.work = session_->report().work;
   first.seconds = session_->report().seconds;
   attempts_.push_back(std::move(first));
@@ -515,7 +516,10 @@ void SessionThread::showAttempt(int index) {
     scene_ = session_->shared_scene();
   }
   verdict_ = attempts_[static_cast<std::size_t>(index)].verdict;
+  // Measured with the attempt's verdict: showing it measures nothing again.
   between_garments_.reset();
+  if (!scene_->outfit.empty())
+    between_garments_ = attempts_[static_cast<std::size_t>(index)].between_garments;
   running_ = false;
   steps_requested_ = 0;
   // The attempt's own checkpoints (a resumed attempt keeps those between batches before it).

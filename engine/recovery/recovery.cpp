@@ -56,6 +56,15 @@ GarmentChecker make_checker(const Garment& garment, const BodyReference* body) {
   return GarmentChecker(garment, body, expected_regions_from_names(garment));
 }
 
+// What an attempt's record says of its garment: the verdict, its rank and, for an outfit, the
+// crossings between garments.
+void judge_into(const Scene& scene, const GarmentMetrics& metrics, AttemptRecord& record) {
+  record.verdict = judge_garment(*scene.garment, metrics);
+  record.rank = rank_verdict(record.verdict);
+  if (!scene.outfit.empty())
+    record.between_garments = crossings_between_garments(outfit_piece_garments(scene), metrics);
+}
+
 void run_attempt(const Session& base, const BodyReference* body, Observer* observer,
                  Attempt& attempt) {
   const auto start = std::chrono::steady_clock::now();
@@ -69,14 +78,13 @@ void run_attempt(const Session& base, const BodyReference* body, Observer* obser
   const double work_before = attempt.session->report().work;
   CancelOnly cancel(observer);
   attempt.session->run(&cancel);
-  const Garment& garment = *attempt.session->scene().garment;
-  attempt.metrics = make_checker(garment, body).measure(attempt.session->positions());
+  const Scene& scene = attempt.session->scene();
+  attempt.metrics = make_checker(*scene.garment, body).measure(attempt.session->positions());
   AttemptRecord& record = attempt.record;
   record.action = to_string(action.kind);
   record.reason = action.reason;
   record.resume_batch = action.resume_batch;
-  record.verdict = judge_garment(garment, attempt.metrics);
-  record.rank = rank_verdict(record.verdict);
+  judge_into(scene, attempt.metrics, record);
   record.work = attempt.session->report().work - work_before;
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -90,11 +98,10 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
   RecoveryResult result;
   result.session = first_pass;
   result.metrics = make_checker(garment, body).measure(first_pass->positions());
-  result.verdict = judge_garment(garment, result.metrics);
   AttemptRecord first;
   first.action = "first pass";
-  first.verdict = result.verdict;
-  first.rank = rank_verdict(result.verdict);
+  judge_into(scene, result.metrics, first);
+  result.verdict = first.verdict;
   first.work = first_pass->report().work;
   first.seconds = first_pass->report().seconds;
   result.attempts.push_back(std::move(first));

@@ -18,6 +18,7 @@
 
 #include "engine/core/observer.h"
 #include "engine/quality/garment_metrics.h"
+#include "engine/quality/outfit_crossings.h"
 #include "engine/quality/verdict.h"
 #include "engine/recovery/cannot_fit.h"
 #include "engine/recovery/diagnosis.h"
@@ -50,6 +51,9 @@ struct AttemptRecord {
   VerdictRank rank;
   double work = 0.0;  // its own, past the checkpoint it resumed
   double seconds = 0.0;
+  // An outfit's crossings between garments (outfit_crossings.h), measured with the verdict: the
+  // studio shows them for any attempt chosen. Empty for one garment.
+  std::vector<GarmentPairCrossings> between_garments;
 };
 
 struct RecoveryResult {
