@@ -64,7 +64,7 @@ int check_command(const std::vector<std::string>& args) {
                   100.0 * tight.forced_strain());
       for (const int piece : tight.pieces)
         std::printf(" %s", garment.pieces[piece].name.c_str());
-      std::printf("\n");
+      std::printf(tight.seam ? " (their side of a seam round the body)\n" : "\n");
     }
     std::printf("  %-22s %.4f\n", "max_seam_gap_m", metrics.max_seam_gap_m);
     std::printf("  %-22s %zu\n", "misplaced", metrics.misplaced.size());

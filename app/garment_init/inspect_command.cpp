@@ -59,7 +59,8 @@ int inspect_command(const std::vector<std::string>& args) {
     nlohmann::json pieces = nlohmann::json::array();
     for (int piece : opening.pieces)
       pieces.push_back(garment.pieces[piece].name);
-    report["openings"].push_back({{"pieces", pieces}, {"rest_length_m", opening.rest_length_m}});
+    report["openings"].push_back(
+        {{"pieces", pieces}, {"rest_length_m", opening.rest_length_m}, {"seam", opening.seam}});
   }
   report["vertices"] = garment.vertex_count();
   report["triangles"] = garment.triangle_count();

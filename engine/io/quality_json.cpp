@@ -33,7 +33,8 @@ std::string quality_json(const Garment& garment, const GarmentMetrics& metrics,
       pieces.push_back(name(piece));
     json["tightest_opening"] = {{"pieces", pieces},
                                 {"rest_length_m", metrics.tightest_opening.rest_length_m},
-                                {"body_girth_m", metrics.tightest_opening.body_girth_m}};
+                                {"body_girth_m", metrics.tightest_opening.body_girth_m},
+                                {"seam", metrics.tightest_opening.seam}};
   }
   json["max_seam_gap_m"] = metrics.max_seam_gap_m;
   json["misplaced"] = nlohmann::json::array();

@@ -233,7 +233,7 @@ GarmentMetrics GarmentChecker::measure(const Eigen::MatrixX3d& positions,
                                                        .transpose());
     for (const Opening& opening : openings_) {
       OpeningFit fit{opening.pieces, opening.rest_length_m,
-                     body_girth_inside(opening, positions, body_->mesh)};
+                     body_girth_inside(opening, positions, body_->mesh), opening.seam};
       if (fit.body_girth_m > 0.0 &&
           (metrics.tightest_opening.pieces.empty() ||
            fit.forced_strain() > metrics.tightest_opening.forced_strain()))

@@ -60,6 +60,7 @@ struct OpeningFit {
   std::vector<int> pieces;  // the pieces it runs along; empty: no opening has body inside it
   double rest_length_m = 0.0;
   double body_girth_m = 0.0;
+  bool seam = false;  // a seam ring (opening_fit.h): `pieces` are the side whose length it has
   // How much the body inside forces the opening to stretch on average: girth / rest length − 1.
   double forced_strain() const {
     return rest_length_m > 0.0 ? body_girth_m / rest_length_m - 1.0 : 0.0;

@@ -29,12 +29,60 @@ bool inside_polygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Ve
   return inside;
 }
 
+// The closed loops walked along the given boundary edges (indices into `boundary`), each edge
+// at most once, from one edge to one that leaves the welded vertex where it ends: the edges of
+// each loop in order.
+std::vector<std::vector<int>> closed_loops(const std::vector<BoundaryEdge>& boundary,
+                                           const std::vector<int>& edges) {
+  std::multimap<int, int> leaving;  // welded vertex → edges starting there
+  for (const int i : edges)
+    leaving.emplace(boundary[i].welded_from, i);
+  std::vector<char> used(boundary.size(), 0);
+  std::vector<std::vector<int>> loops;
+  for (const int first : edges) {
+    if (used[first]) continue;
+    std::vector<int> loop;
+    int edge = first;
+    bool closed = false;
+    while (edge >= 0 && !used[edge]) {
+      used[edge] = 1;
+      loop.push_back(edge);
+      if (boundary[edge].welded_to == boundary[first].welded_from) {
+        closed = true;
+        break;
+      }
+      const auto [begin, end] = leaving.equal_range(boundary[edge].welded_to);
+      edge = -1;
+      for (auto next = begin; next != end; ++next)
+        if (!used[next->second]) {
+          edge = next->second;
+          break;
+        }
+    }
+    if (closed && loop.size() >= 3) loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+Opening make_opening(const Garment& garment, const std::vector<BoundaryEdge>& boundary,
+                     const std::vector<int>& loop, bool seam) {
+  Opening opening;
+  opening.seam = seam;
+  std::set<int> pieces;
+  for (const int edge : loop) {
+    opening.vertices.push_back(boundary[edge].from);
+    opening.rest_length_m += boundary[edge].rest_length;
+    pieces.insert(garment.vertex_piece(boundary[edge].from));
+  }
+  opening.pieces.assign(pieces.begin(), pieces.end());
+  return opening;
+}
+
 }  // namespace
 
 std::vector<Opening> garment_openings(const Garment& garment, const MeshEdges& mesh,
                                       const Eigen::VectorXi& welded) {
   std::vector<BoundaryEdge> boundary;
-  std::map<std::pair<int, int>, int> welded_edge_count;
   for (Eigen::Index e = 0; e < mesh.edges.rows(); ++e) {
     if (mesh.edge_triangles(e, 1) >= 0) continue;
     // Orient the edge as in its triangle (counter-clockwise), so that loops walk one way.
@@ -46,49 +94,72 @@ std::vector<Opening> garment_openings(const Garment& garment, const MeshEdges& m
     BoundaryEdge edge{from, to, welded(from), welded(to),
                       (garment.rest_positions.row(from) - garment.rest_positions.row(to)).norm()};
     if (edge.welded_from == edge.welded_to) continue;  // closed up by welding (a dart's tip)
-    ++welded_edge_count[std::minmax(edge.welded_from, edge.welded_to)];
     boundary.push_back(edge);
   }
-  // Edges that another boundary edge meets after welding are sewn: inside the garment.
-  std::multimap<int, int> leaving;  // welded vertex → boundary edges starting there
-  std::vector<int> open_edges;
-  for (std::size_t i = 0; i < boundary.size(); ++i) {
-    const BoundaryEdge& edge = boundary[i];
-    if (welded_edge_count[std::minmax(edge.welded_from, edge.welded_to)] != 1) continue;
-    leaving.emplace(edge.welded_from, static_cast<int>(i));
-    open_edges.push_back(static_cast<int>(i));
-  }
-  std::vector<char> used(boundary.size(), 0);
+  // How many boundary edges of the chosen pieces meet at each welded edge: one is free cloth
+  // among them, more are sewn to each other.
+  const auto count_welded = [&](const std::vector<char>& chosen) {
+    std::map<std::pair<int, int>, int> count;
+    for (const BoundaryEdge& edge : boundary)
+      if (chosen[garment.vertex_piece(edge.from)])
+        ++count[std::minmax(edge.welded_from, edge.welded_to)];
+    return count;
+  };
+  const auto welded_key = [](const BoundaryEdge& edge) {
+    return std::minmax(edge.welded_from, edge.welded_to);
+  };
+  const std::vector<char> every_piece(garment.pieces.size(), 1);
+  const std::map<std::pair<int, int>, int> sewn_count = count_welded(every_piece);
+  std::vector<int> free_edges;
+  for (std::size_t i = 0; i < boundary.size(); ++i)
+    if (sewn_count.at(welded_key(boundary[i])) == 1) free_edges.push_back(static_cast<int>(i));
   std::vector<Opening> openings;
-  for (const int first : open_edges) {
-    if (used[first]) continue;
-    Opening opening;
-    std::set<int> pieces;
-    int edge = first;
-    bool closed = false;
-    while (edge >= 0 && !used[edge]) {
-      used[edge] = 1;
-      const BoundaryEdge& current = boundary[edge];
-      opening.vertices.push_back(current.from);
-      opening.rest_length_m += current.rest_length;
-      pieces.insert(garment.vertex_piece(current.from));
-      if (current.welded_to == boundary[first].welded_from) {
-        closed = true;
-        break;
-      }
-      edge = -1;
-      const auto [begin, end] = leaving.equal_range(current.welded_to);
-      for (auto next = begin; next != end; ++next)
-        if (!used[next->second]) {
-          edge = next->second;
-          break;
-        }
+  for (const std::vector<int>& loop : closed_loops(boundary, free_edges))
+    openings.push_back(make_opening(garment, boundary, loop, false));
+
+  // The sides of seam rings: each piece, and each two pieces sewn to each other. A loop of the
+  // side's own boundary sewn all along to the rest of the garment is a ring when the side has
+  // another boundary loop (a sleeve's armhole and its end; a cuff skirt's top and its hem); the
+  // one loop of a side without a hole (a front panel sewn all round) only goes round the side.
+  std::set<std::pair<int, int>> sides;
+  for (Eigen::Index s = 0; s < garment.sewing_pairs.rows(); ++s) {
+    const int a = garment.vertex_piece(garment.sewing_pairs(s, 0));
+    const int b = garment.vertex_piece(garment.sewing_pairs(s, 1));
+    sides.insert({a, a});
+    sides.insert({b, b});
+    if (a != b) sides.insert(std::minmax(a, b));
+  }
+  std::set<std::vector<int>> seen;  // a ring found from two sides once
+  for (const auto& [a, b] : sides) {
+    std::vector<char> chosen(garment.pieces.size(), 0);
+    chosen[a] = chosen[b] = 1;
+    const std::map<std::pair<int, int>, int> side_count = count_welded(chosen);
+    std::vector<int> side_boundary;
+    for (std::size_t i = 0; i < boundary.size(); ++i)
+      if (chosen[garment.vertex_piece(boundary[i].from)] &&
+          side_count.at(welded_key(boundary[i])) == 1)
+        side_boundary.push_back(static_cast<int>(i));
+    const std::vector<std::vector<int>> loops = closed_loops(boundary, side_boundary);
+    if (loops.size() < 2) continue;
+    for (const std::vector<int>& loop : loops) {
+      const bool sewn_all_along = std::all_of(loop.begin(), loop.end(), [&](int edge) {
+        return sewn_count.at(welded_key(boundary[edge])) > 1;
+      });
+      if (!sewn_all_along) continue;
+      std::vector<int> key = loop;
+      std::sort(key.begin(), key.end());
+      if (seen.insert(std::move(key)).second)
+        openings.push_back(make_opening(garment, boundary, loop, true));
     }
-    if (!closed || opening.vertices.size() < 3) continue;
-    opening.pieces.assign(pieces.begin(), pieces.end());
-    openings.push_back(std::move(opening));
   }
   return openings;
+}
+
+std::string opening_label(const Garment& garment, const std::vector<int>& pieces, bool seam) {
+  std::string names;
+  for (const int piece : pieces)
+    names += (names.empty() ? "" : ", ") + garment.pieces[piece].name;
+  return (seam ? "the seam round " : "the opening along ") + names;
 }
 
 double body_girth_inside(const Opening& opening, const Eigen::MatrixX3d& positions,

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <set>
 
+#include "engine/quality/opening_fit.h"
+
 namespace garment {
 namespace {
 
@@ -114,8 +116,7 @@ QualityVerdict judge_garment(const Garment& garment, const GarmentMetrics& metri
           format(" (its edge %.0f mm from the body)", 1000.0 * metrics.max_strain_body_distance_m);
     const OpeningFit& tight = metrics.tightest_opening;
     if (tight.forced_strain() > thresholds.max_strain) {
-      where += "; the opening along " +
-               piece_list(garment, std::set<int>(tight.pieces.begin(), tight.pieces.end())) +
+      where += "; " + opening_label(garment, tight.pieces, tight.seam) +
                format(" is %.1f cm long", 100.0 * tight.rest_length_m) +
                format(", the body inside it %.1f cm round", 100.0 * tight.body_girth_m);
     }

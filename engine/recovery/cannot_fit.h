@@ -9,7 +9,8 @@
 //   length of its piece puts it (a cuff at the end of its sleeve): shorter than the body inside
 //   it there by more than the strain limit and a margin (cannot_fit.cpp), no arrangement of the
 //   same pieces moves it to a thinner place.
-// The recovery spends no attempt on such a design.
+// A limb's opening is judged only when no piece is misplaced: otherwise the first pass does not
+// say where the design puts it. The recovery spends no attempt on such a design.
 
 #include <optional>
 #include <string>

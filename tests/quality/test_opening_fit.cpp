@@ -6,6 +6,7 @@
 
 #include <QtTest>
 
+#include <map>
 #include <numbers>
 
 #include "engine/pattern/pattern.h"
@@ -151,18 +152,43 @@ class OpeningFitTest : public QObject {
   void trousers_open_at_the_waistband_and_the_legs() {
     const Garment garment = build_garment(load_pattern(std::filesystem::path(GARMENT_TEST_DATA) /
                                                        "patterns" / "gc_0473_specification.json"));
-    std::vector<std::vector<std::string>> found;
+    std::vector<std::pair<bool, std::vector<std::string>>> found;
+    std::map<std::string, double> seam_lengths;
     for (const Opening& opening : openings_of(garment)) {
       std::vector<std::string> names;
       for (const int piece : opening.pieces)
         names.push_back(garment.pieces[piece].name);
       std::sort(names.begin(), names.end());
-      found.push_back(names);
+      if (opening.seam) seam_lengths[names.front()] = opening.rest_length_m;
+      found.emplace_back(opening.seam, names);
     }
     std::sort(found.begin(), found.end());
-    const std::vector<std::vector<std::string>> expected{
-        {"pant_b_l", "pant_f_l"}, {"pant_b_r", "pant_f_r"}, {"wb_back", "wb_front"}};
+    // Free: the waistband's top and the legs' ends. Seam rings: the waistband's lower edge, sewn
+    // to the trousers, and each leg's top, sewn to the waistband and to the other leg.
+    const std::vector<std::pair<bool, std::vector<std::string>>> expected{
+        {false, {"pant_b_l", "pant_f_l"}}, {false, {"pant_b_r", "pant_f_r"}},
+        {false, {"wb_back", "wb_front"}},  {true, {"pant_b_l", "pant_f_l"}},
+        {true, {"pant_b_r", "pant_f_r"}},  {true, {"wb_back", "wb_front"}}};
     QCOMPARE(found, expected);
+    // gc_0473's waistband: two 40 cm rectangles (the pattern file), sewn along their lower edges.
+    QVERIFY(std::abs(seam_lengths["wb_back"] - 0.80) < 1e-9);
+  }
+
+  void a_gathered_seam_closes_to_its_shorter_side() {
+    // gc_0014 (even half): each cuff skirt's 8.85 cm top is sewn to a sleeve end of 18.9 cm, front
+    // and back (the pattern file's vertices): round the arm the seam is 17.7 cm, its hem 28.8 cm.
+    const Garment garment =
+        build_garment(load_pattern(std::filesystem::path(GARMENT_TEST_DATA) / "patterns" /
+                                   "recovery" / "gc_0014_specification.json"));
+    int rings = 0;
+    for (const Opening& opening : openings_of(garment)) {
+      if (garment.pieces[opening.pieces.front()].name != "sl_left_cuff_skirt_b") continue;
+      QCOMPARE(opening.pieces.size(), std::size_t{2});
+      QVERIFY2(std::abs(opening.rest_length_m - (opening.seam ? 0.1771 : 0.2881)) < 5e-4,
+               std::to_string(opening.rest_length_m).c_str());
+      rings += opening.seam ? 1 : 0;
+    }
+    QCOMPARE(rings, 1);
   }
 };
 

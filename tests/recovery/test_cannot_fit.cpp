@@ -4,10 +4,13 @@
 //   (35 % strain), 75 cm can (8 %), whatever the girth where the first pass left them;
 // - openings round a limb are judged where they sit, with a margin: a 16.6 cm cuff round 21.7 cm
 //   of forearm cannot fit (31 %), an 18.5 cm one can (17 %: the verdict judges it);
-// - no opening with a body inside it, or a garment without openings: nothing to say;
+// - no opening with a body inside it, or a garment without openings: nothing to say; nor for a
+//   limb's opening with a piece misplaced (perhaps round the wrong part of the body);
 // - the real skirt with a 60 cm waistband (tests/data/patterns/recovery/skirts__skirt_waistband,
 //   a Garment-Pattern-Generator template) is reported as cannot_fit with both lengths after its
-//   first pass, and the recovery makes no attempt on it.
+//   first pass, and the recovery makes no attempt on it;
+// - a gathered seam round an arm (gc_0014, tuning half: cuff skirts whose 17.7 cm top is sewn to
+//   sleeve ends of 37.8 cm) is judged by its shorter side: cannot_fit, named as a seam, no attempt.
 
 #include <QtTest>
 
@@ -75,6 +78,19 @@ class CannotFitTest : public QObject {
     QVERIFY(!find_cannot_fit(garment, opening(0.180, 0.217), body(), 0.20).has_value());
   }
 
+  void limbOpeningsAreNotJudgedWithPiecesMisplaced() {
+    const Garment garment = garment_with_pieces(3);
+    GarmentMetrics limb = opening(0.166, 0.217);
+    QVERIFY(find_cannot_fit(garment, limb, body(), 0.20).has_value());
+    // Any piece, along the opening or not: the first pass does not say where the design puts it.
+    limb.misplaced.push_back({2, "behind the body"});
+    QVERIFY(!find_cannot_fit(garment, limb, body(), 0.20).has_value());
+    // Round the torso, its narrowest girth bounds every place: judged all the same.
+    GarmentMetrics torso = opening(0.60, 0.85);
+    torso.misplaced.push_back({2, "behind the body"});
+    QVERIFY(find_cannot_fit(garment, torso, body(), 0.20).has_value());
+  }
+
   void nothingToJudgeWithoutAnOpening() {
     const Garment garment = garment_with_pieces(2);
     QVERIFY(!find_cannot_fit(garment, GarmentMetrics{}, body(), 0.20).has_value());
@@ -99,6 +115,26 @@ class CannotFitTest : public QObject {
     for (int piece : result.cannot_fit->pieces)
       names.push_back(scene->garment->pieces[piece].name);
     QCOMPARE(names, (std::vector<std::string>{"wb_back", "wb_front"}));
+  }
+
+  void aGatheredCuffSeamGetsNoAttempt() {
+    if (test::sanitizer_build())
+      QSKIP("a sanitizer build: whole sessions at full budgets are checked in the Release run");
+    const std::shared_ptr<const Scene> scene =
+        load_scene(test::test_data("patterns/recovery/gc_0014_specification.json"),
+                   test::test_data("bodies/f_smpl_average_A40.obj"));
+    auto first_pass = std::make_shared<Session>(scene);
+    first_pass->run();
+    const BodyReference reference(scene->body->mesh);
+    const RecoveryResult result = recover(first_pass, &reference);
+    QVERIFY(result.cannot_fit.has_value());
+    QCOMPARE(result.attempts.size(), std::size_t(1));
+    // Front and back tops of 8.85 cm (the pattern file); the elbow is about 25 cm round.
+    QVERIFY(std::abs(result.cannot_fit->opening_m - 0.177) < 0.001);
+    QVERIFY(result.cannot_fit->body_m > 0.23 && result.cannot_fit->body_m < 0.28);
+    QVERIFY2(result.cannot_fit->message.rfind("the seam round sl_", 0) == 0,
+             result.cannot_fit->message.c_str());
+    QVERIFY(result.cannot_fit->message.find("cuff_skirt_b, sl_") != std::string::npos);
   }
 };
 
