@@ -6,6 +6,8 @@
 #include <deque>
 #include <stdexcept>
 
+#include "engine/solver/ldlt_solve_rows.h"
+
 namespace garment {
 namespace {
 
@@ -77,7 +79,7 @@ class Preconditioner {
            ldlt_.vectorD().minCoeff() > 1e-12 * ldlt_.vectorD().maxCoeff();
   }
 
-  Rows solve(const Rows& rhs) const { return ldlt_.solve(rhs); }
+  Rows solve(const Rows& rhs) const { return ldlt_solve_rows(ldlt_, rhs); }
 
  private:
   const std::vector<std::shared_ptr<Potential>>& potentials_;
