@@ -46,6 +46,16 @@ GarmentMetrics opening(double rest_length_m, double body_girth_m) {
   return metrics;
 }
 
+// The pattern's first pass on f_smpl_average_A40, then the recovery from it.
+std::pair<std::shared_ptr<const Scene>, RecoveryResult> first_pass_recovered(const char* pattern) {
+  std::shared_ptr<const Scene> scene =
+      load_scene(test::test_data(pattern), test::test_data("bodies/f_smpl_average_A40.obj"));
+  auto first_pass = std::make_shared<Session>(scene);
+  first_pass->run();
+  const BodyReference reference(scene->body->mesh);
+  return {scene, recover(first_pass, &reference)};
+}
+
 }  // namespace
 
 class CannotFitTest : public QObject {
@@ -99,13 +109,8 @@ class CannotFitTest : public QObject {
   void aTightWaistbandGetsNoAttempt() {
     if (test::sanitizer_build())
       QSKIP("a sanitizer build: whole sessions at full budgets are checked in the Release run");
-    const std::shared_ptr<const Scene> scene =
-        load_scene(test::test_data("patterns/recovery/skirts__skirt_waistband.json"),
-                   test::test_data("bodies/f_smpl_average_A40.obj"));
-    auto first_pass = std::make_shared<Session>(scene);
-    first_pass->run();
-    const BodyReference reference(scene->body->mesh);
-    const RecoveryResult result = recover(first_pass, &reference);
+    const auto [scene, result] =
+        first_pass_recovered("patterns/recovery/skirts__skirt_waistband.json");
     QVERIFY(result.cannot_fit.has_value());
     QCOMPARE(result.attempts.size(), std::size_t(1));
     QVERIFY(result.verdict.failed(FailureKind::Strain));
@@ -120,13 +125,8 @@ class CannotFitTest : public QObject {
   void aGatheredCuffSeamGetsNoAttempt() {
     if (test::sanitizer_build())
       QSKIP("a sanitizer build: whole sessions at full budgets are checked in the Release run");
-    const std::shared_ptr<const Scene> scene =
-        load_scene(test::test_data("patterns/recovery/gc_0014_specification.json"),
-                   test::test_data("bodies/f_smpl_average_A40.obj"));
-    auto first_pass = std::make_shared<Session>(scene);
-    first_pass->run();
-    const BodyReference reference(scene->body->mesh);
-    const RecoveryResult result = recover(first_pass, &reference);
+    const auto [scene, result] =
+        first_pass_recovered("patterns/recovery/gc_0014_specification.json");
     QVERIFY(result.cannot_fit.has_value());
     QCOMPARE(result.attempts.size(), std::size_t(1));
     // Front and back tops of 8.85 cm (the pattern file); the elbow is about 25 cm round.
