@@ -96,23 +96,20 @@ std::vector<Opening> garment_openings(const Garment& garment, const MeshEdges& m
     if (edge.welded_from == edge.welded_to) continue;  // closed up by welding (a dart's tip)
     boundary.push_back(edge);
   }
-  // How many boundary edges of the chosen pieces meet at each welded edge: one is free cloth
-  // among them, more are sewn to each other.
-  const auto count_welded = [&](const std::vector<char>& chosen) {
-    std::map<std::pair<int, int>, int> count;
-    for (const BoundaryEdge& edge : boundary)
-      if (chosen[garment.vertex_piece(edge.from)])
-        ++count[std::minmax(edge.welded_from, edge.welded_to)];
-    return count;
-  };
+  // The boundary edges that meet at each welded edge, grouped once: one is free cloth, more are
+  // sewn to each other.
   const auto welded_key = [](const BoundaryEdge& edge) {
     return std::minmax(edge.welded_from, edge.welded_to);
   };
-  const std::vector<char> every_piece(garment.pieces.size(), 1);
-  const std::map<std::pair<int, int>, int> sewn_count = count_welded(every_piece);
+  std::map<std::pair<int, int>, std::vector<int>> at_welded;
+  for (std::size_t i = 0; i < boundary.size(); ++i)
+    at_welded[welded_key(boundary[i])].push_back(static_cast<int>(i));
+  std::vector<const std::vector<int>*> meeting(boundary.size());
+  for (std::size_t i = 0; i < boundary.size(); ++i)
+    meeting[i] = &at_welded.at(welded_key(boundary[i]));
   std::vector<int> free_edges;
   for (std::size_t i = 0; i < boundary.size(); ++i)
-    if (sewn_count.at(welded_key(boundary[i])) == 1) free_edges.push_back(static_cast<int>(i));
+    if (meeting[i]->size() == 1) free_edges.push_back(static_cast<int>(i));
   std::vector<Opening> openings;
   for (const std::vector<int>& loop : closed_loops(boundary, free_edges))
     openings.push_back(make_opening(garment, boundary, loop, false));
@@ -133,18 +130,19 @@ std::vector<Opening> garment_openings(const Garment& garment, const MeshEdges& m
   for (const auto& [a, b] : sides) {
     std::vector<char> chosen(garment.pieces.size(), 0);
     chosen[a] = chosen[b] = 1;
-    const std::map<std::pair<int, int>, int> side_count = count_welded(chosen);
+    const auto of_side = [&](int edge) {
+      return chosen[garment.vertex_piece(boundary[edge].from)];
+    };
     std::vector<int> side_boundary;
     for (std::size_t i = 0; i < boundary.size(); ++i)
-      if (chosen[garment.vertex_piece(boundary[i].from)] &&
-          side_count.at(welded_key(boundary[i])) == 1)
+      if (of_side(static_cast<int>(i)) &&
+          std::count_if(meeting[i]->begin(), meeting[i]->end(), of_side) == 1)
         side_boundary.push_back(static_cast<int>(i));
     const std::vector<std::vector<int>> loops = closed_loops(boundary, side_boundary);
     if (loops.size() < 2) continue;
     for (const std::vector<int>& loop : loops) {
-      const bool sewn_all_along = std::all_of(loop.begin(), loop.end(), [&](int edge) {
-        return sewn_count.at(welded_key(boundary[edge])) > 1;
-      });
+      const bool sewn_all_along = std::all_of(loop.begin(), loop.end(),
+                                              [&](int edge) { return meeting[edge]->size() > 1; });
       if (!sewn_all_along) continue;
       std::vector<int> key = loop;
       std::sort(key.begin(), key.end());
