@@ -1,7 +1,5 @@
 #include "engine/solver/ldlt_solve_rows.h"
 
-#include <vector>
-
 namespace garment {
 
 Eigen::MatrixX3d ldlt_solve_rows(const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& ldlt,
