@@ -123,7 +123,7 @@ void write_batch_summary(const std::vector<Outcome>& outcomes,
                 total - statuses["ok"], median, p95, max);
   markdown << line;
   if (!cannot_fit.empty()) {
-    markdown << "Designs that cannot fit the body (failed, no attempt made):\n\n";
+    markdown << "Designs that cannot fit the body (failed; no attempt once found):\n\n";
     for (const auto& entry : cannot_fit)
       markdown << "- " << entry["name"].get<std::string>() << ": "
                << entry["message"].get<std::string>() << "\n";

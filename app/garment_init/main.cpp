@@ -60,10 +60,11 @@ const Command kCommands[] = {
      "seed, with a longer settle), up to --attempts sessions in all (default 8; 1: a single pass), "
      "the\n"
      "best kept; the report lists every attempt, and a design that cannot fit the body is said so\n"
-     "(cannot_fit) with no attempt. --clearance MM: the post-process repels the cloth from the\n"
-     "body within MM millimetres instead of its 3 mm (the cloth ends up to 0.3 mm nearer), for a\n"
-     "simulator whose collision distance is larger (scripts/blender-drape). Exit 0 when the\n"
-     "garment passes the quality check, 3 when it was written but fails it.",
+     "(cannot_fit) with no attempt, or none further once an attempt shows it. --clearance MM:\n"
+     "the post-process repels the cloth from the body within MM millimetres instead of its 3 mm\n"
+     "(the cloth ends up to 0.3 mm nearer), for a simulator whose collision distance is larger\n"
+     "(scripts/blender-drape). Exit 0 when the garment passes the quality check, 3 when it was\n"
+     "written but fails it.",
      garment::cli::run_command},
     {"batch",
      "batch DIR|--outfits LIST -o OUTDIR [--jobs N] [--body BODY.obj] [--bodies DIR] [--time-limit "

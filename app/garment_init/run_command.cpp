@@ -209,7 +209,8 @@ int run_command(const std::vector<std::string>& args) {
     std::printf("wrote %s in %.2f s: %s\n", output->c_str(), seconds,
                 verdict.ok() ? "ok" : "fails quality check");
     if (recovered.cannot_fit)
-      std::printf("  cannot_fit: %s; no attempt made\n", recovered.cannot_fit->message.c_str());
+      std::printf("  cannot_fit: %s; %s\n", recovered.cannot_fit->message.c_str(),
+                  recovered.attempts.size() > 1 ? "no further attempt" : "no attempt made");
     for (const QualityFailure& failure : verdict.failures)
       std::printf("  %s: %s\n", std::string(failure_kind_name(failure.kind)).c_str(),
                   failure.message.c_str());

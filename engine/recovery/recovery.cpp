@@ -89,6 +89,17 @@ void run_attempt(const Session& base, const BodyReference* body, Observer* obser
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Whether the best garment so far says its design cannot fit the body (cannot_fit.h); sets
+// result.cannot_fit. Judged again after every round: a limb's opening is judged only when no piece
+// is misplaced, and an attempt may place them all where the first pass did not.
+bool judge_cannot_fit(RecoveryResult& result) {
+  if (!result.verdict.failed(FailureKind::Strain)) return false;
+  const Scene& scene = result.session->scene();
+  result.cannot_fit =
+      find_cannot_fit(*scene.garment, result.metrics, *scene.body, QualityThresholds{}.max_strain);
+  return result.cannot_fit.has_value();
+}
+
 }  // namespace
 
 RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyReference* body,
@@ -105,11 +116,7 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
   first.work = first_pass->report().work;
   first.seconds = first_pass->report().seconds;
   result.attempts.push_back(std::move(first));
-  if (result.verdict.failed(FailureKind::Strain)) {
-    result.cannot_fit =
-        find_cannot_fit(garment, result.metrics, *scene.body, QualityThresholds{}.max_strain);
-    if (result.cannot_fit) return result;
-  }
+  if (judge_cannot_fit(result)) return result;
 
   const BodyLandmarks& landmarks = scene.body->landmarks;
   std::vector<GarmentSeeds> seeds;
@@ -206,6 +213,7 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
         result.verdict = attempt.record.verdict;
       }
     }
+    if (judge_cannot_fit(result)) break;
   }
   return result;
 }

@@ -9,7 +9,8 @@
 // with the first pass, in `garment_work` (free vertices × solver iterations, as the session's
 // budgets; an action is expected to cost what the session it corrects did from the checkpoint it
 // resumes). Cancellable between solver iterations. A
-// design that cannot fit the body (cannot_fit.h) gets no attempt.
+// design that cannot fit the body (cannot_fit.h) gets no attempt, or no further one when the best
+// garment of a round shows it (the first pass had pieces misplaced, so it did not say).
 
 #include <memory>
 #include <optional>
@@ -61,7 +62,8 @@ struct RecoveryResult {
   int chosen = 0;
   bool out_of_budget = false;  // actions were passed over for `work`
   bool cancelled = false;
-  // A design no arrangement can pass (cannot_fit.h): no attempt was made.
+  // A design no arrangement can pass (cannot_fit.h), found on the first pass (no attempt was
+  // made) or on the attempt chosen after a round (no further one).
   std::optional<CannotFit> cannot_fit;
   // The chosen attempt's; its scene's garment is the one to write (a remesh has its own mesh).
   std::shared_ptr<const Session> session;

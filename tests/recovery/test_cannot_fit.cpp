@@ -10,8 +10,12 @@
 //   a Garment-Pattern-Generator template) is reported as cannot_fit with both lengths after its
 //   first pass, and the recovery makes no attempt on it;
 // - a gathered seam round an arm (gc_0014, tuning half: cuff skirts whose 17.7 cm top is sewn to
-//   sleeve ends of 37.8 cm) is judged by its shorter side: cannot_fit, named as a seam, no attempt.
+//   sleeve ends of 37.8 cm) is judged by its shorter side: cannot_fit, named as a seam, no attempt;
+// - trousers whose first pass leaves a piece misplaced (gc_0346, tuning half) are judged again on
+//   the attempt chosen after the first round: its cuff's seam of 29.4 cm round the calf cannot
+//   fit, and no further attempt is made.
 
+#include <tbb/global_control.h>
 #include <QtTest>
 
 #include "engine/body/body.h"
@@ -135,6 +139,28 @@ class CannotFitTest : public QObject {
     QVERIFY2(result.cannot_fit->message.rfind("the seam round sl_", 0) == 0,
              result.cannot_fit->message.c_str());
     QVERIFY(result.cannot_fit->message.find("cuff_skirt_b, sl_") != std::string::npos);
+  }
+
+  void aCuffFoundTooTightOnAnAttemptEndsTheRecovery() {
+    if (test::sanitizer_build())
+      QSKIP("a sanitizer build: whole sessions at full budgets are checked in the Release run");
+    // On one thread (as `batch` runs it) the first pass does not say where the cuffs sit: a piece
+    // is misplaced.
+    const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    const auto [scene, result] =
+        first_pass_recovered("patterns/recovery/gc_0346_specification.json");
+    QVERIFY(result.attempts.front().verdict.failed(FailureKind::Misplaced));
+    QVERIFY(result.cannot_fit.has_value());
+    QVERIFY(result.chosen > 0);
+    QVERIFY(!result.verdict.failed(FailureKind::Misplaced));
+    // No round after the one that showed it (a round is at most one attempt per thread).
+    QVERIFY(static_cast<int>(result.attempts.size()) <= 1 + result.chosen + 1);
+    QVERIFY(result.attempts.size() < std::size_t(RecoverySettings{}.attempts));
+    // The cuff's top (the pattern file): 12.37 + 2.30 cm at the front, 14.68 cm at the back.
+    QVERIFY(std::abs(result.cannot_fit->opening_m - 0.2935) < 0.002);
+    QVERIFY(result.cannot_fit->forced_strain > 0.25);
+    QVERIFY2(result.cannot_fit->message.rfind("the seam round pant_", 0) == 0,
+             result.cannot_fit->message.c_str());
   }
 };
 
