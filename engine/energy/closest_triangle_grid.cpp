@@ -42,6 +42,41 @@ float round_up(double v) {
   return static_cast<double>(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
 
+// The least (squared distance, rank) so far: rank −1 for the hint and the id for any other
+// triangle, so that the answer does not depend on the order triangles are offered in. Nothing ties
+// with the initial bound (rank −2): a triangle must lie strictly within the radius.
+struct Closest {
+  explicit Closest(double radius) : best_squared(radius * radius) {}
+  void offer(const Positions& x, const Eigen::MatrixX3i& triangles, const Eigen::Vector3d& p, int t,
+             int rank) {
+    const Eigen::Vector3d a = x.row(triangles(t, 0)).transpose(),
+                          b = x.row(triangles(t, 1)).transpose(),
+                          c = x.row(triangles(t, 2)).transpose();
+    const Eigen::Vector3d weights = closest_point_weights(p, a, b, c);
+    const double squared =
+        (p - (weights.x() * a + weights.y() * b + weights.z() * c)).squaredNorm();
+    if (squared < best_squared ||
+        (squared == best_squared && best_rank != -2 && rank < best_rank)) {
+      best_squared = squared;
+      best_rank = rank;
+      hit.triangle = t;
+      hit.weights = weights;
+    }
+  }
+  ClosestTriangleGrid::Hit answer() {
+    if (hit.triangle >= 0) hit.distance = std::sqrt(best_squared);
+    return hit;
+  }
+  double best_squared;
+  int best_rank = -2;
+  ClosestTriangleGrid::Hit hit;
+};
+
+double squared_distance_to_box(const Eigen::Vector3d& p, const Eigen::Vector3d& lower,
+                               const Eigen::Vector3d& upper) {
+  return (lower - p).cwiseMax(p - upper).cwiseMax(0.0).squaredNorm();
+}
+
 }  // namespace
 
 Eigen::Vector3i ClosestTriangleGrid::Level::cell_of(const Eigen::Vector3d& p) const {
@@ -172,50 +207,27 @@ template <class Ignore>
 ClosestTriangleGrid::Hit ClosestTriangleGrid::search(const Positions& x, const Eigen::Vector3d& p,
                                                      double radius, const Ignore& ignore,
                                                      int hint) const {
-  Hit best;
-  if (ids_.empty() || !p.allFinite()) return best;
+  Closest best(radius);
+  if (ids_.empty() || !p.allFinite()) return best.hit;
   const Eigen::MatrixX3i& triangles = *triangles_;
-  // The answer is the least (squared distance, rank), rank −1 for the hint and the id for any
-  // other triangle, whatever order the cells are visited in. Nothing ties with the initial bound
-  // (rank −2): a triangle must lie strictly within the radius.
-  double best_squared = radius * radius;
-  int best_rank = -2;
-  const auto consider = [&](int t, int rank) {
-    if (ignore(t)) return;
-    const int i = triangles(t, 0), j = triangles(t, 1), k = triangles(t, 2);
-    const Eigen::Vector3d a = x.row(i).transpose(), b = x.row(j).transpose(),
-                          c = x.row(k).transpose();
-    const Eigen::Vector3d weights = closest_point_weights(p, a, b, c);
-    const double squared =
-        (p - (weights.x() * a + weights.y() * b + weights.z() * c)).squaredNorm();
-    if (squared < best_squared ||
-        (squared == best_squared && best_rank != -2 && rank < best_rank)) {
-      best_squared = squared;
-      best_rank = rank;
-      best.triangle = t;
-      best.weights = weights;
-    }
-  };
   const auto consider_box = [&](const Eigen::Vector3d& lower, const Eigen::Vector3d& upper, int t) {
-    const Eigen::Vector3d outside = (lower - p).cwiseMax(p - upper).cwiseMax(0.0);
-    if (outside.squaredNorm() > best_squared || t == hint) return;
-    consider(t, t);
+    if (squared_distance_to_box(p, lower, upper) > best.best_squared || t == hint || ignore(t))
+      return;
+    best.offer(x, triangles, p, t, t);
   };
-  if (hint >= 0) consider(hint, -1);
+  if (hint >= 0 && !ignore(hint)) best.offer(x, triangles, p, hint, -1);
   // The fine level when the hint's distance fits in one fine cell, else the coarse one.
-  const Level& level =
-      has_fine_ && best_rank == -1 && best_squared <= levels_[1].cell_size * levels_[1].cell_size
-          ? levels_[1]
-          : levels_[0];
+  const Level& level = has_fine_ && best.best_rank == -1 &&
+                               best.best_squared <= levels_[1].cell_size * levels_[1].cell_size
+                           ? levels_[1]
+                           : levels_[0];
   const double h = level.cell_size;
   for (int i : level.oversized)
     consider_box(lower_[i], upper_[i], ids_[i]);
-  if ((p.cwiseAbs().array() / h >= kCoordinateOffset / 2).any()) {
-    if (best.triangle >= 0) best.distance = std::sqrt(best_squared);
-    return best;  // beyond the grid's keys: only the hint and the oversized triangles
-  }
+  if ((p.cwiseAbs().array() / h >= kCoordinateOffset / 2).any())
+    return best.answer();  // beyond the grid's keys: only the hint and the oversized triangles
   const Eigen::Vector3i centre = level.cell_of(p);
-  const int max_shell = static_cast<int>(std::ceil(std::sqrt(best_squared) / h));
+  const int max_shell = static_cast<int>(std::ceil(std::sqrt(best.best_squared) / h));
   for (int shell = 0; shell <= max_shell; ++shell) {
     for (int dz = -shell; dz <= shell; ++dz) {
       for (int dy = -shell; dy <= shell; ++dy) {
@@ -225,9 +237,9 @@ ClosestTriangleGrid::Hit ClosestTriangleGrid::search(const Positions& x, const E
         for (int dx = -shell; dx <= shell; dx += step) {
           const Eigen::Vector3i cell = centre + Eigen::Vector3i(dx, dy, dz);
           const Eigen::Vector3d cell_lower = cell.cast<double>() * h;
-          const Eigen::Vector3d outside =
-              (cell_lower - p).cwiseMax(p - (cell_lower.array() + h).matrix()).cwiseMax(0.0);
-          if (outside.squaredNorm() > best_squared) continue;  // the cell is too far
+          if (squared_distance_to_box(p, cell_lower, (cell_lower.array() + h).matrix()) >
+              best.best_squared)
+            continue;  // the cell is too far
           const int slot = level.find_slot(cell_key(cell));
           if (slot < 0) continue;
           for (int s = level.slot_start[slot]; s < level.slot_start[slot + 1]; ++s) {
@@ -242,10 +254,77 @@ ClosestTriangleGrid::Hit ClosestTriangleGrid::search(const Positions& x, const E
     const Eigen::Vector3d lower = (centre.array() - shell).cast<double>() * h;
     const Eigen::Vector3d upper = (centre.array() + shell + 1).cast<double>() * h;
     const double reach = (p - lower).cwiseMin(upper - p).minCoeff();
-    if (best_squared < reach * reach) break;
+    if (best.best_squared < reach * reach) break;
   }
-  if (best.triangle >= 0) best.distance = std::sqrt(best_squared);
-  return best;
+  return best.answer();
+}
+
+bool ClosestTriangleGrid::within(const Positions& x, const Eigen::Vector3d& p, double radius,
+                                 int skip_vertex, const std::function<bool(int)>& ignore,
+                                 std::size_t limit, std::vector<int>& out) const {
+  out.clear();
+  if (ids_.empty() || !p.allFinite()) return true;
+  const Eigen::MatrixX3i& triangles = *triangles_;
+  const double bound = radius * radius;
+  // A triangle is listed in every cell its plane crosses: the ids are made unique when they
+  // might have passed the limit, and at the end.
+  std::size_t unique_until = 2 * limit + 16;
+  const auto consider_box = [&](const Eigen::Vector3d& lower, const Eigen::Vector3d& upper, int t) {
+    if (squared_distance_to_box(p, lower, upper) >= bound || has_corner(t, skip_vertex) ||
+        (ignore && ignore(t)))
+      return true;
+    Closest near(radius);
+    near.offer(x, triangles, p, t, t);
+    if (near.hit.triangle < 0) return true;
+    out.push_back(t);
+    if (out.size() <= unique_until) return true;
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    unique_until = out.size() + limit + 16;
+    return out.size() <= limit;
+  };
+  const Level& level = levels_[0];
+  const double h = level.cell_size;
+  for (int i : level.oversized)
+    if (!consider_box(lower_[i], upper_[i], ids_[i])) return false;
+  if (!((p.cwiseAbs().array() + radius) / h < kCoordinateOffset / 2).all()) {
+    // Near the end of the grid's keys: every indexed triangle (never met at garment scale).
+    for (std::size_t i = 0; i < ids_.size(); ++i)
+      if (!consider_box(lower_[i], upper_[i], ids_[i])) return false;
+  } else {
+    const Eigen::Vector3i from = level.cell_of(p.array() - radius),
+                          to = level.cell_of(p.array() + radius);
+    for (int cz = from.z(); cz <= to.z(); ++cz)
+      for (int cy = from.y(); cy <= to.y(); ++cy)
+        for (int cx = from.x(); cx <= to.x(); ++cx) {
+          const Eigen::Vector3i cell(cx, cy, cz);
+          const Eigen::Vector3d cell_lower = cell.cast<double>() * h;
+          if (squared_distance_to_box(p, cell_lower, (cell_lower.array() + h).matrix()) >= bound)
+            continue;
+          const int slot = level.find_slot(cell_key(cell));
+          if (slot < 0) continue;
+          for (int s = level.slot_start[slot]; s < level.slot_start[slot + 1]; ++s) {
+            const Item& item = level.items[s];
+            if (!consider_box(Eigen::Vector3f::Map(item.lower).cast<double>(),
+                              Eigen::Vector3f::Map(item.upper).cast<double>(), item.triangle))
+              return false;
+          }
+        }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out.size() <= limit;
+}
+
+ClosestTriangleGrid::Hit ClosestTriangleGrid::closest_of(const Positions& x,
+                                                         const Eigen::MatrixX3i& triangles,
+                                                         const Eigen::Vector3d& p, double radius,
+                                                         const std::vector<int>& listed, int hint) {
+  Closest best(radius);
+  if (!p.allFinite()) return best.hit;
+  for (int t : listed)
+    best.offer(x, triangles, p, t, t == hint ? -1 : t);
+  return best.answer();
 }
 
 }  // namespace garment

@@ -1,12 +1,13 @@
 #pragma once
 // Closest-triangle queries for one-sided self repulsion (paper Eq. 12): a uniform hash grid over
-// a triangle set, rebuilt from current positions at every refresh. Each triangle is listed in
-// every cell its bounding box overlaps; a query walks cell shells outwards from the query point
-// and stops once no unvisited cell can hold anything closer. A hint (the triangle found at the
-// last refresh) starts the search with a small bound, so that usually the query point's own cell
-// settles it. Chosen over a CGAL AABB tree after measuring both (bench_solver_closest_triangle):
-// for nearby triangles (a search radius of a few centimetres) the grid builds several times
-// faster and, with hints, answers faster too.
+// a triangle set, built from the positions of the moment. Each triangle is listed in the cells of
+// its bounding box that its plane crosses. within() gathers every triangle near a point, for the
+// lists self repulsion keeps between refreshes; closest() walks cell shells outwards from the
+// query point and stops once no unvisited cell can hold anything closer. A hint (the triangle
+// found at the last refresh) starts the search with a small bound, so that usually the query
+// point's own cell settles it. Chosen over a CGAL AABB tree after measuring both
+// (bench_solver_closest_triangle): for nearby triangles (a search radius of a few centimetres) the
+// grid builds several times faster and, with hints, answers faster too.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -42,6 +43,20 @@ class ClosestTriangleGrid {
   // point's own vertex, for two-sided self repulsion).
   Hit closest(const Positions& x, const Eigen::Vector3d& p, double radius, int skip_vertex,
               const std::function<bool(int)>& ignore, int hint = -1) const;
+
+  // Every indexed triangle whose closest point lies strictly within `radius` of p, but those with
+  // `skip_vertex` as a corner and those for which ignore(id) is true (ignore may be empty), in
+  // `out` by increasing id. Returns false, `out` then unspecified, when there are more than
+  // `limit` (the caller asks closest() instead where cloth lies in many layers). Thread-safe.
+  bool within(const Positions& x, const Eigen::Vector3d& p, double radius, int skip_vertex,
+              const std::function<bool(int)>& ignore, std::size_t limit,
+              std::vector<int>& out) const;
+
+  // The closest of `listed` (ids into triangles, #T×3) within `radius` of p, ranked as closest()
+  // ranks them: where `listed` holds every triangle closest() could answer, the same answer.
+  static Hit closest_of(const Positions& x, const Eigen::MatrixX3i& triangles,
+                        const Eigen::Vector3d& p, double radius, const std::vector<int>& listed,
+                        int hint = -1);
 
   double cell_size() const { return levels_[0].cell_size; }
 

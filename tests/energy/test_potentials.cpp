@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <random>
 
@@ -377,6 +378,190 @@ class PotentialsTest : public QObject {
       }
     }
     QVERIFY(found > 1000);
+  }
+
+  // The lists behind self repulsion's refreshes: within() lists every triangle nearer than its
+  // radius (brute force), and refuses when they are more than its limit; a list made at radius r +
+  // s holds the closest triangle within r after every vertex has moved up to s/2, and closest_of()
+  // over it answers as the brute force does at the new positions, hinted or not. Same stacked
+  // pieces as above.
+  void listsOfNearTrianglesHoldTheClosestAfterSmallMoves() {
+    const Garment garment = test::load_test_garment("patterns/gc_0000_specification.json", 0.03);
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> noise(-5e-4, 5e-4);
+    Positions x0(garment.vertex_count(), 3);
+    for (int v = 0; v < garment.vertex_count(); ++v)
+      x0.row(v) << garment.rest_positions(v, 0) + noise(random),
+          garment.rest_positions(v, 1) + noise(random), 1e-3 * garment.vertex_piece[v];
+    std::vector<int> ids;
+    for (int t = 0; t < garment.triangle_count(); t += 2)
+      ids.push_back(t);
+    const double radius = 0.02, skin = 0.01;
+    const auto squared_to = [&](const Positions& x, const Eigen::Vector3d& p, int t) {
+      const Eigen::Vector3d a = x.row(garment.triangles(t, 0)).transpose(),
+                            b = x.row(garment.triangles(t, 1)).transpose(),
+                            c = x.row(garment.triangles(t, 2)).transpose();
+      const Eigen::Vector3d w = closest_point_weights(p, a, b, c);
+      return (p - (w.x() * a + w.y() * b + w.z() * c)).squaredNorm();
+    };
+    const auto has = [&](int t, int v) {
+      return garment.triangles(t, 0) == v || garment.triangles(t, 1) == v ||
+             garment.triangles(t, 2) == v;
+    };
+    ClosestTriangleGrid grid;
+    grid.build(x0, garment.triangles, ids, 0.06);
+    // Every third vertex ignores the triangles with an even first corner as well.
+    const std::function<bool(int)> even_corner = [&](int t) {
+      return garment.triangles(t, 0) % 2 == 0;
+    };
+    std::vector<std::vector<int>> lists(garment.vertex_count());
+    std::size_t listed = 0;
+    for (int v = 0; v < garment.vertex_count(); ++v) {
+      const bool ignoring = v % 3 == 0;
+      const std::function<bool(int)> ignore = ignoring ? even_corner : std::function<bool(int)>();
+      std::vector<int> expected;
+      for (int t : ids)
+        if (!has(t, v) && !(ignoring && even_corner(t)) &&
+            squared_to(x0, x0.row(v).transpose(), t) < (radius + skin) * (radius + skin))
+          expected.push_back(t);
+      QVERIFY(grid.within(x0, x0.row(v).transpose(), radius + skin, v, ignore, expected.size(),
+                          lists[v]));
+      QCOMPARE(lists[v], expected);
+      listed += expected.size();
+      // One fewer allowed than there are: refused.
+      std::vector<int> refused;
+      if (!expected.empty())
+        QVERIFY(!grid.within(x0, x0.row(v).transpose(), radius + skin, v, ignore,
+                             expected.size() - 1, refused));
+    }
+    qInfo("%zu triangles listed for %d vertices", listed, garment.vertex_count());
+    QVERIFY(listed > 4 * static_cast<std::size_t>(garment.vertex_count()));
+
+    // Every vertex moved by up to s/2 in a random direction.
+    Positions x1 = x0;
+    std::normal_distribution<double> gaussian;
+    std::uniform_real_distribution<double> fraction(0.0, 1.0);
+    for (int v = 0; v < garment.vertex_count(); ++v) {
+      const Eigen::Vector3d direction =
+          Eigen::Vector3d(gaussian(random), gaussian(random), gaussian(random)).normalized();
+      x1.row(v) += (0.5 * skin * fraction(random)) * direction.transpose();
+    }
+    int found = 0;
+    for (int v = 0; v < garment.vertex_count(); ++v) {
+      const Eigen::Vector3d p = x1.row(v).transpose();
+      const bool ignoring = v % 3 == 0;
+      for (const int hint : {-1, lists[v].empty() ? -1 : lists[v][lists[v].size() / 2]}) {
+        double best = radius * radius;
+        int best_rank = -2, expected = -1;
+        for (int t : ids) {
+          if (has(t, v) || (ignoring && even_corner(t))) continue;
+          const double squared = squared_to(x1, p, t);
+          const int rank = t == hint ? -1 : t;
+          if (squared < best || (squared == best && best_rank != -2 && rank < best_rank)) {
+            best = squared;
+            best_rank = rank;
+            expected = t;
+          }
+        }
+        const ClosestTriangleGrid::Hit hit =
+            ClosestTriangleGrid::closest_of(x1, garment.triangles, p, radius, lists[v], hint);
+        QCOMPARE(hit.triangle, expected);
+        if (expected >= 0) {
+          QCOMPARE(hit.distance, std::sqrt(best));
+          ++found;
+        }
+      }
+    }
+    QVERIFY(found > garment.vertex_count());
+  }
+
+  // A self repulsion evaluated along a path of small moves, its lists made once the moves are
+  // small, kept while they cover the positions and dropped after a move too large, gives at each
+  // step the energy and gradient of one whose every vertex asks the grid at each refresh
+  // (list_skin 0); so does one whose vertices near many triangles keep no list (list_limit 4), and
+  // one moved so fast that its lists serve no refresh and are paused.
+  // Pieces of gc_0000 stacked 3 mm apart: the odd ones repelled by the even ones, and all of them
+  // two-sided by their own cloth.
+  void selfRepulsionKeepingListsEqualsAskingTheGrid() {
+    const Garment garment = test::load_test_garment("patterns/gc_0000_specification.json", 0.03);
+    const MeshEdges mesh = build_mesh_edges(garment.triangles, garment.vertex_count());
+    const auto neighbours = vertex_neighbours(mesh.edges, garment.vertex_count());
+    std::vector<int> odd_vertices, even_triangles, all_vertices, all_triangles;
+    for (int v = 0; v < garment.vertex_count(); ++v) {
+      all_vertices.push_back(v);
+      if (garment.vertex_piece[v] % 2 == 1) odd_vertices.push_back(v);
+    }
+    for (int t = 0; t < garment.triangle_count(); ++t) {
+      all_triangles.push_back(t);
+      if (garment.triangle_piece(t) % 2 == 0) even_triangles.push_back(t);
+    }
+    const ActiveSet active(garment.vertex_count(), VertexRole::Free);
+    const auto make = [&](bool two_sided, double skin, int limit) {
+      SelfRepulsionSettings settings{1000.0, 0.004, 0.02, 1};
+      settings.list_skin = skin;
+      settings.list_limit = limit;
+      if (!two_sided)
+        return std::make_shared<SelfRepulsionPotential>(garment.triangles, odd_vertices,
+                                                        even_triangles, settings);
+      auto self = std::make_shared<SelfRepulsionPotential>(garment.triangles, all_vertices,
+                                                           all_triangles, settings);
+      self->keep_sides(neighbours, 3);
+      return self;
+    };
+    constexpr int kSteps = 12;
+    for (const bool two_sided : {false, true}) {
+      std::mt19937 random(13);
+      std::uniform_real_distribution<double> step(-1e-3, 1e-3);
+      Eigen::MatrixX3d x(garment.vertex_count(), 3);
+      for (int v = 0; v < garment.vertex_count(); ++v)
+        x.row(v) << garment.rest_positions(v, 0), garment.rest_positions(v, 1),
+            3e-3 * garment.vertex_piece[v];
+      const auto asking = make(two_sided, 0.0, 64), keeping = make(two_sided, 0.02, 64),
+                 short_lists = make(two_sided, 0.02, 4);
+      Objective asked(active), kept(active), shortened(active);
+      asked.add(asking);
+      kept.add(keeping);
+      shortened.add(short_lists);
+      for (int i = 0; i < kSteps; ++i) {
+        // Steps of up to 1.7 mm, and one of up to 5 cm that no list can cover.
+        const double scale = i == kSteps / 2 ? 30.0 : 1.0;
+        for (int v = 0; v < garment.vertex_count(); ++v)
+          for (int c = 0; c < 3; ++c)
+            x(v, c) += scale * step(random);
+        Eigen::MatrixX3d asked_gradient, kept_gradient, shortened_gradient;
+        const double energy = asked.evaluate(x, &asked_gradient, nullptr, i);
+        QVERIFY(energy > 0.0);
+        QVERIFY(kept.evaluate(x, &kept_gradient, nullptr, i) == energy);
+        QVERIFY(kept_gradient == asked_gradient);
+        QVERIFY(shortened.evaluate(x, &shortened_gradient, nullptr, i) == energy);
+        QVERIFY(shortened_gradient == asked_gradient);
+      }
+      qInfo("%s: lists made %d times (skin 2 cm), %d (skin 0), in %d refreshes",
+            two_sided ? "two-sided" : "one-sided", keeping->lists_made(), asking->lists_made(),
+            kSteps);
+      QCOMPARE(asking->lists_made(), 0);
+      // After the first small step, and after the first small step that follows the large one.
+      QVERIFY(keeping->lists_made() >= 2 && keeping->lists_made() <= kSteps / 2);
+      QCOMPARE(short_lists->lists_made(), keeping->lists_made());
+      QVERIFY(short_lists->unlisted() > 0 && keeping->unlisted() < short_lists->unlisted());
+
+      // Steps of up to 17 mm: lists made at the first refresh serve none, and none are made for
+      // the next eight refreshes; the energy is still the grid's.
+      const auto fast = make(two_sided, 0.02, 64), asking_fast = make(two_sided, 0.0, 64);
+      Objective fast_kept(active), fast_asked(active);
+      fast_kept.add(fast);
+      fast_asked.add(asking_fast);
+      for (int i = 0; i < kSteps; ++i) {
+        for (int v = 0; v < garment.vertex_count(); ++v)
+          for (int c = 0; c < 3; ++c)
+            x(v, c) += 10.0 * step(random);
+        Eigen::MatrixX3d asked_gradient, kept_gradient;
+        const double energy = fast_asked.evaluate(x, &asked_gradient, nullptr, i);
+        QVERIFY(fast_kept.evaluate(x, &kept_gradient, nullptr, i) == energy);
+        QVERIFY(kept_gradient == asked_gradient);
+      }
+      QCOMPARE(fast->lists_made(), 2);  // at refreshes 0 and 9
+    }
   }
 
   void assembledEnergyIsTheSumAndThreadIndependent() {
