@@ -213,7 +213,8 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
         result.verdict = attempt.record.verdict;
       }
     }
-    if (judge_cannot_fit(result)) break;
+    // A garment kept from before the round was judged then.
+    if (result.chosen != base && judge_cannot_fit(result)) break;
   }
   return result;
 }
