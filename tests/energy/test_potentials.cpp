@@ -59,6 +59,24 @@ SingleEdge single_edge(const std::shared_ptr<DistanceGrid>& body, const Eigen::V
   return result;
 }
 
+// The pieces laid flat at their pattern coordinates with up to 0.5 mm of noise, piece k at
+// z = k mm: many near ties and dense cells for closest-triangle queries.
+Positions stacked_with_noise(const Garment& garment, std::mt19937& random) {
+  std::uniform_real_distribution<double> noise(-5e-4, 5e-4);
+  Positions x(garment.vertex_count(), 3);
+  for (int v = 0; v < garment.vertex_count(); ++v)
+    x.row(v) << garment.rest_positions(v, 0) + noise(random),
+        garment.rest_positions(v, 1) + noise(random), 1e-3 * garment.vertex_piece[v];
+  return x;
+}
+
+std::vector<int> every_other_triangle(const Garment& garment) {
+  std::vector<int> ids;
+  for (int t = 0; t < garment.triangle_count(); t += 2)
+    ids.push_back(t);
+  return ids;
+}
+
 }  // namespace
 
 class PotentialsTest : public QObject {
@@ -315,14 +333,8 @@ class PotentialsTest : public QObject {
   void closestTriangleGridMatchesBruteForce() {
     const Garment garment = test::load_test_garment("patterns/gc_0000_specification.json", 0.03);
     std::mt19937 random(7);
-    std::uniform_real_distribution<double> noise(-5e-4, 5e-4);
-    Positions x(garment.vertex_count(), 3);
-    for (int v = 0; v < garment.vertex_count(); ++v)
-      x.row(v) << garment.rest_positions(v, 0) + noise(random),
-          garment.rest_positions(v, 1) + noise(random), 1e-3 * garment.vertex_piece[v];
-    std::vector<int> ids;
-    for (int t = 0; t < garment.triangle_count(); t += 2)
-      ids.push_back(t);
+    const Positions x = stacked_with_noise(garment, random);
+    const std::vector<int> ids = every_other_triangle(garment);
     std::vector<Eigen::Vector3d> points;
     std::vector<int> skips;
     for (int v = 0; v < garment.vertex_count(); ++v) {
@@ -388,14 +400,8 @@ class PotentialsTest : public QObject {
   void listsOfNearTrianglesHoldTheClosestAfterSmallMoves() {
     const Garment garment = test::load_test_garment("patterns/gc_0000_specification.json", 0.03);
     std::mt19937 random(11);
-    std::uniform_real_distribution<double> noise(-5e-4, 5e-4);
-    Positions x0(garment.vertex_count(), 3);
-    for (int v = 0; v < garment.vertex_count(); ++v)
-      x0.row(v) << garment.rest_positions(v, 0) + noise(random),
-          garment.rest_positions(v, 1) + noise(random), 1e-3 * garment.vertex_piece[v];
-    std::vector<int> ids;
-    for (int t = 0; t < garment.triangle_count(); t += 2)
-      ids.push_back(t);
+    const Positions x0 = stacked_with_noise(garment, random);
+    const std::vector<int> ids = every_other_triangle(garment);
     const double radius = 0.02, skin = 0.01;
     const auto squared_to = [&](const Positions& x, const Eigen::Vector3d& p, int t) {
       const Eigen::Vector3d a = x.row(garment.triangles(t, 0)).transpose(),
