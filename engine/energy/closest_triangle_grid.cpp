@@ -42,6 +42,17 @@ float round_up(double v) {
   return static_cast<double>(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
 
+// The squared distance from p to triangle t (a row of triangles, #T×3), and the barycentric
+// weights of its closest point.
+double squared_distance_to_triangle(const Positions& x, const Eigen::MatrixX3i& triangles,
+                                    const Eigen::Vector3d& p, int t, Eigen::Vector3d& weights) {
+  const Eigen::Vector3d a = x.row(triangles(t, 0)).transpose(),
+                        b = x.row(triangles(t, 1)).transpose(),
+                        c = x.row(triangles(t, 2)).transpose();
+  weights = closest_point_weights(p, a, b, c);
+  return (p - (weights.x() * a + weights.y() * b + weights.z() * c)).squaredNorm();
+}
+
 // The least (squared distance, rank) so far: rank −1 for the hint and the id for any other
 // triangle, so that the answer does not depend on the order triangles are offered in. Nothing ties
 // with the initial bound (rank −2): a triangle must lie strictly within the radius.
@@ -49,12 +60,8 @@ struct Closest {
   explicit Closest(double radius) : best_squared(radius * radius) {}
   void offer(const Positions& x, const Eigen::MatrixX3i& triangles, const Eigen::Vector3d& p, int t,
              int rank) {
-    const Eigen::Vector3d a = x.row(triangles(t, 0)).transpose(),
-                          b = x.row(triangles(t, 1)).transpose(),
-                          c = x.row(triangles(t, 2)).transpose();
-    const Eigen::Vector3d weights = closest_point_weights(p, a, b, c);
-    const double squared =
-        (p - (weights.x() * a + weights.y() * b + weights.z() * c)).squaredNorm();
+    Eigen::Vector3d weights;
+    const double squared = squared_distance_to_triangle(x, triangles, p, t, weights);
     if (squared < best_squared ||
         (squared == best_squared && best_rank != -2 && rank < best_rank)) {
       best_squared = squared;
@@ -89,6 +96,19 @@ int ClosestTriangleGrid::Level::find_slot(std::uint64_t key) const {
     if (slot_keys[slot] == key) return static_cast<int>(slot);
     if (slot_keys[slot] == kEmpty) return -1;
   }
+}
+
+template <class Visit>
+bool ClosestTriangleGrid::Level::each_item(const Eigen::Vector3i& cell, const Visit& visit) const {
+  const int slot = find_slot(cell_key(cell));
+  if (slot < 0) return true;
+  for (int s = slot_start[slot]; s < slot_start[slot + 1]; ++s) {
+    const Item& item = items[s];
+    if (!visit(Eigen::Vector3f::Map(item.lower).cast<double>(),
+               Eigen::Vector3f::Map(item.upper).cast<double>(), item.triangle))
+      return false;
+  }
+  return true;
 }
 
 void ClosestTriangleGrid::build(const Positions& x, const Eigen::MatrixX3i& triangles,
@@ -211,9 +231,9 @@ ClosestTriangleGrid::Hit ClosestTriangleGrid::search(const Positions& x, const E
   if (ids_.empty() || !p.allFinite()) return best.hit;
   const Eigen::MatrixX3i& triangles = *triangles_;
   const auto consider_box = [&](const Eigen::Vector3d& lower, const Eigen::Vector3d& upper, int t) {
-    if (squared_distance_to_box(p, lower, upper) > best.best_squared || t == hint || ignore(t))
-      return;
-    best.offer(x, triangles, p, t, t);
+    if (squared_distance_to_box(p, lower, upper) <= best.best_squared && t != hint && !ignore(t))
+      best.offer(x, triangles, p, t, t);
+    return true;
   };
   if (hint >= 0 && !ignore(hint)) best.offer(x, triangles, p, hint, -1);
   // The fine level when the hint's distance fits in one fine cell, else the coarse one.
@@ -240,13 +260,7 @@ ClosestTriangleGrid::Hit ClosestTriangleGrid::search(const Positions& x, const E
           if (squared_distance_to_box(p, cell_lower, (cell_lower.array() + h).matrix()) >
               best.best_squared)
             continue;  // the cell is too far
-          const int slot = level.find_slot(cell_key(cell));
-          if (slot < 0) continue;
-          for (int s = level.slot_start[slot]; s < level.slot_start[slot + 1]; ++s) {
-            const Item& item = level.items[s];
-            consider_box(Eigen::Vector3f::Map(item.lower).cast<double>(),
-                         Eigen::Vector3f::Map(item.upper).cast<double>(), item.triangle);
-          }
+          level.each_item(cell, consider_box);
         }
       }
     }
@@ -273,9 +287,8 @@ bool ClosestTriangleGrid::within(const Positions& x, const Eigen::Vector3d& p, d
     if (squared_distance_to_box(p, lower, upper) >= bound || has_corner(t, skip_vertex) ||
         (ignore && ignore(t)))
       return true;
-    Closest near(radius);
-    near.offer(x, triangles, p, t, t);
-    if (near.hit.triangle < 0) return true;
+    Eigen::Vector3d weights;
+    if (squared_distance_to_triangle(x, triangles, p, t, weights) >= bound) return true;
     out.push_back(t);
     if (out.size() <= unique_until) return true;
     std::sort(out.begin(), out.end());
@@ -301,14 +314,7 @@ bool ClosestTriangleGrid::within(const Positions& x, const Eigen::Vector3d& p, d
           const Eigen::Vector3d cell_lower = cell.cast<double>() * h;
           if (squared_distance_to_box(p, cell_lower, (cell_lower.array() + h).matrix()) >= bound)
             continue;
-          const int slot = level.find_slot(cell_key(cell));
-          if (slot < 0) continue;
-          for (int s = level.slot_start[slot]; s < level.slot_start[slot + 1]; ++s) {
-            const Item& item = level.items[s];
-            if (!consider_box(Eigen::Vector3f::Map(item.lower).cast<double>(),
-                              Eigen::Vector3f::Map(item.upper).cast<double>(), item.triangle))
-              return false;
-          }
+          if (!level.each_item(cell, consider_box)) return false;
         }
   }
   std::sort(out.begin(), out.end());

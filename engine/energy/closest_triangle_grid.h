@@ -79,6 +79,10 @@ class ClosestTriangleGrid {
 
     Eigen::Vector3i cell_of(const Eigen::Vector3d& p) const;
     int find_slot(std::uint64_t key) const;  // -1 when the cell is empty
+    // visit(lower, upper, triangle) on each item of `cell` (its box widened to doubles) until it
+    // returns false; false then, else true.
+    template <class Visit>
+    bool each_item(const Eigen::Vector3i& cell, const Visit& visit) const;
   };
   void build_level(Level& level, const Positions& x, double cell_size);
   bool has_corner(int triangle, int vertex) const;

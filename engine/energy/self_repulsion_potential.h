@@ -45,8 +45,10 @@ struct SelfRepulsionSettings {
   double list_skin = 0.02;
   // A vertex with more triangles than this within the lists' reach (cloth in many layers, or
   // crumpled) keeps no list and asks the grid at each refresh, from the triangle it found last
-  // time: a long list costs more to scan than that query. Without a limit gc_0414 (tuning half),
-  // with up to 1,425 triangles on a list, took 21.9 s against 14.8 s; 64 was not tuned further.
+  // time: a long list costs more to scan than that query. gc_0414 (tuning half, up to 1,425
+  // triangles on a list), lists made at every refresh, against no lists: 21.9 s against 14.8 s
+  // without a limit, 12.9 s against 10.3 s with 64 (docs/speed.md; the pause between lists that
+  // serve nothing, in the potential, closes the rest). 64 was not tuned further.
   int list_limit = 64;
 };
 
