@@ -30,6 +30,7 @@ struct Attempt {
   std::shared_ptr<Session> session;
   GarmentMetrics metrics;
   AttemptRecord record;
+  double cost = 0.0;  // its work past the checkpoint it resumed, as the budgets count it
 };
 
 // The checkpoint of `base` an action resumes.
@@ -39,16 +40,28 @@ std::size_t resumed_checkpoint(const Session& base, const RecoveryAction& action
   return base.checkpoint_before_batch(action.resume_batch);
 }
 
-// What an action on `base` is likely to cost: the work `base` did from the checkpoint the action
+// The cost of a session's work past `from` (its SessionReport::work at a checkpoint): that work,
+// the post-process's weighted by `post_process_weight` (RecoverySettings). No action resumes past
+// the post-process's start, so all of its work lies past `from`.
+double cost_since(const SessionReport& report, double from, double post_process_weight) {
+  double post_process = 0.0;
+  for (const PhaseRecord& phase : report.phases)
+    if (phase.phase == Phase::PostProcess) post_process += phase.work;
+  return report.work - from + (post_process_weight - 1.0) * post_process;
+}
+
+// What an action on `base` is likely to cost: what `base` cost from the checkpoint the action
 // resumes, twice that for the longer settle (its iterations doubled), and for a new mesh all of it
 // in proportion to the vertices (the square of the edge lengths' ratio). Deterministic, so that
 // which actions fit the budget does not depend on the machine.
-double estimated_work(const Session& base, const RecoveryAction& action) {
+double estimated_cost(const Session& base, const RecoveryAction& action,
+                      double post_process_weight) {
   if (action.kind == RecoveryActionKind::Remesh) {
     const double ratio = base.scene().garment->target_edge_length / action.edge_length;
-    return base.report().work * ratio * ratio;
+    return cost_since(base.report(), 0.0, post_process_weight) * ratio * ratio;
   }
-  const double after = base.report().work - base.checkpoint_work(resumed_checkpoint(base, action));
+  const double after = cost_since(
+      base.report(), base.checkpoint_work(resumed_checkpoint(base, action)), post_process_weight);
   return action.kind == RecoveryActionKind::SettleLonger ? 2.0 * after : after;
 }
 
@@ -65,8 +78,8 @@ void judge_into(const Scene& scene, const GarmentMetrics& metrics, AttemptRecord
     record.between_garments = crossings_between_garments(outfit_piece_garments(scene), metrics);
 }
 
-void run_attempt(const Session& base, const BodyReference* body, Observer* observer,
-                 Attempt& attempt) {
+void run_attempt(const Session& base, const BodyReference* body, double post_process_weight,
+                 Observer* observer, Attempt& attempt) {
   const auto start = std::chrono::steady_clock::now();
   const RecoveryAction& action = attempt.action;
   if (attempt.remeshed)
@@ -86,6 +99,7 @@ void run_attempt(const Session& base, const BodyReference* body, Observer* obser
   record.resume_batch = action.resume_batch;
   judge_into(scene, attempt.metrics, record);
   record.work = attempt.session->report().work - work_before;
+  attempt.cost = cost_since(attempt.session->report(), work_before, post_process_weight);
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -132,6 +146,8 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
   // (bending ×4, ×8) rather than trying something else.
   std::vector<std::string> tried;
   double used = 0.0;
+  const double first_pass_cost =
+      cost_since(first_pass->report(), 0.0, settings.post_process_weight);
   while (!result.verdict.ok() && static_cast<int>(result.attempts.size()) < settings.attempts) {
     if (observer && observer->cancel_requested()) {
       result.cancelled = true;
@@ -153,9 +169,9 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
         continue;
       // An action that would take the attempts, or the garment with its first pass, past their
       // work is passed over for a cheaper one.
-      const double cost = estimated_work(*result.session, action);
+      const double cost = estimated_cost(*result.session, action, settings.post_process_weight);
       if (planned + cost > settings.work ||
-          first_pass->report().work + planned + cost > settings.garment_work) {
+          first_pass_cost + planned + cost > settings.garment_work) {
         over_budget = true;
         continue;
       }
@@ -185,7 +201,9 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
       threads.emplace_back([&, i] {
         try {
           tbb::task_arena arena(share);
-          arena.execute([&] { run_attempt(*result.session, body, observer, round[i]); });
+          arena.execute([&] {
+            run_attempt(*result.session, body, settings.post_process_weight, observer, round[i]);
+          });
         } catch (...) {
           errors[i] = std::current_exception();
         }
@@ -201,7 +219,7 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
     const int base = result.chosen;
     for (Attempt& attempt : round) {
       attempt.record.from_attempt = base;
-      used += attempt.record.work;
+      used += attempt.cost;
       result.attempts.push_back(attempt.record);
       if (observer)
         observer->attempt_finished(static_cast<int>(result.attempts.size()) - 1, attempt.record,

@@ -7,8 +7,8 @@
 // garment depends on the thread count, never on the machine's load); rounds stop at a clean
 // garment, at the number of attempts, or when no action left is expected to fit in `work` and,
 // with the first pass, in `garment_work` (free vertices × solver iterations, as the session's
-// budgets; an action is expected to cost what the session it corrects did from the checkpoint it
-// resumes). Cancellable between solver iterations. A
+// budgets, the post-process's weighed; an action is expected to cost what the session it corrects
+// did from the checkpoint it resumes). Cancellable between solver iterations. A
 // design that cannot fit the body (cannot_fit.h) gets no attempt, or no further one when the best
 // garment of a round shows it (the first pass had pieces misplaced, so it did not say).
 
@@ -30,15 +30,25 @@ namespace garment {
 
 struct RecoverySettings {
   int attempts = 8;  // sessions in all, the first pass included (1: the first pass alone)
-  // The attempts' own work in all. On the even half's failures at 60 million, garments took up to
-  // 164 s (gc_0424, 1 thread) against the 45 s the issue allows; 30 million is half of that.
-  double work = 30e6;
-  // The garment's work in all, its first pass included (each action's estimate counted): the
-  // large garments' time. On the 500 at 697f2f9 a first pass of 64 million work took 31 s and a
-  // reorder after it 22 s more (gc_0440). Replayed on the even half's attempts, 60 million is the
-  // least (in steps of 5) that keeps every garment they made clean; 50 lost gc_0008 and gc_0424,
-  // measured.
-  double garment_work = 60e6;
+  // Both budgets count work (free vertices × solver iterations, as the session's budgets) with
+  // the post-process's weighed post_process_weight times, so that they track time: the first
+  // passes of the 500 at 6cee1f6 took a median 0.117 µs of one thread per unit of the
+  // arrangement's work and 0.928 µs per unit of the post-process's (its solves are the dearest),
+  // 70 % of a garment's time for 25 % of its work. Weighed 8 times, a million units took
+  // 0.088-0.158 s (10th-90th percentile) where unweighed they took 0.191-0.473 s: a large
+  // garment or a tangled one, all post-process, no longer gets attempts its work undercounts.
+  double post_process_weight = 8.0;
+  // The attempts' own work in all (weighed); no lower than garment_work, so the garment's budget
+  // decides (a caller may bound the attempts alone).
+  double work = 125e6;
+  // The garment's work in all (weighed), its first pass included (each action's estimate
+  // counted): about 14 s of one thread at 0.114 s per million, under the issue's p95 of 15 s.
+  // The first-pass failures of the 500 (each on its own body), against 60 and 30 million
+  // unweighed: tuning half 9 clean of 31 against 8 (gc_0240, 0274, 0320 gained; gc_0282 and
+  // 0424 lost, large garments left no room for the 16 mm mesh), judging half 11 of 40 against
+  // 7 (gc_0057, 0129, 0357, 0407 gained). 165 and 82 million: tuning half 9 (gc_0320 not
+  // gained, gc_0282 kept).
+  double garment_work = 125e6;
   int threads = 0;  // threads to share among concurrent attempts; 0: TBB's default
   std::vector<RecoveryActionKind> excluded;  // actions never taken (none: all may be)
 };

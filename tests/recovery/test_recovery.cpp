@@ -9,7 +9,9 @@
 // - the recovery is deterministic: two recoveries from the same first pass, attempts running
 //   concurrently on two threads, give the same positions to the bit; an observer is told of each
 //   attempt in order, with its session (the chosen garment's among them);
-// - a recovery whose work budget is spent makes no attempt and says so;
+// - a recovery whose work budget is spent makes no attempt and says so; the post-process's work
+//   counts RecoverySettings::post_process_weight times: a garment budget its first pass fills
+//   when weighed leaves room for an attempt when it is not;
 // - gc_0477 on f_smpl_average_A40 (of the judging half, used here as a fixed case, not for
 //   tuning): its left cuff's front crosses the seed; the diagnosis selects it alone, before the
 //   other cuff piece it was arranged after, and the garment comes out clean, the crossing gone
@@ -215,6 +217,29 @@ class RecoveryTest : public QObject {
     // Its own garment is the one measured clean (the first pass's mesh does not even fit it).
     const GarmentChecker checker(remeshed, f.body.get(), expected_regions_from_names(remeshed));
     QVERIFY(judge_garment(remeshed, checker.measure(result.session->positions())).ok());
+  }
+
+  void thePostProcessWeighsInTheBudget() {
+    Fixture& f = fixture();
+    const SessionReport& report = f.first_pass->report();
+    double post_process = 0.0;
+    for (const PhaseRecord& phase : report.phases)
+      if (phase.phase == Phase::PostProcess) post_process += phase.work;
+    QVERIFY(post_process > 0.0);
+    RecoverySettings settings;
+    settings.attempts = 2;
+    settings.work = 1e15;
+    // Weighed, the first pass alone fills the garment's budget: no attempt. Counted as the other
+    // phases' work, the same budget leaves four first passes' work free, more than any action
+    // on this garment is expected to cost (a remesh at 16 mm: 1.56 of them).
+    settings.post_process_weight = 1.0 + 4.0 * report.work / post_process;
+    settings.garment_work = report.work + (settings.post_process_weight - 1.0) * post_process;
+    const RecoveryResult weighed = recover(f.first_pass, f.body.get(), settings);
+    QCOMPARE(weighed.attempts.size(), std::size_t(1));
+    QVERIFY(weighed.out_of_budget);
+    settings.post_process_weight = 1.0;
+    const RecoveryResult unweighed = recover(f.first_pass, f.body.get(), settings);
+    QCOMPARE(unweighed.attempts.size(), std::size_t(2));
   }
 
   void aSpentBudgetStopsTheAttempts() {
