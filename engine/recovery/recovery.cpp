@@ -44,10 +44,7 @@ std::size_t resumed_checkpoint(const Session& base, const RecoveryAction& action
 // the post-process's weighted by `post_process_weight` (RecoverySettings). No action resumes past
 // the post-process's start, so all of its work lies past `from`.
 double cost_since(const SessionReport& report, double from, double post_process_weight) {
-  double post_process = 0.0;
-  for (const PhaseRecord& phase : report.phases)
-    if (phase.phase == Phase::PostProcess) post_process += phase.work;
-  return report.work - from + (post_process_weight - 1.0) * post_process;
+  return report.work - from + (post_process_weight - 1.0) * report.post_process.work;
 }
 
 // What an action on `base` is likely to cost: what `base` cost from the checkpoint the action
