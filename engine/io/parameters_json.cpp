@@ -104,6 +104,7 @@ void visit_parameters(ArrangementParameters& p, Visit&& visit) {
   visit("post_process_untangle_patience", p.post_process_untangle_patience);
   visit("post_process_untangle_max_contacts", p.post_process_untangle_max_contacts);
   visit("post_process_untangle_settle_iterations", p.post_process_untangle_settle_iterations);
+  visit("post_process_untangle_rounds", p.post_process_untangle_rounds);
 }
 
 // `key` as written ("energy.stretch_stiffness") or as nested objects ({"energy": {...}}).
@@ -257,6 +258,7 @@ const std::map<std::string_view, Range>& parameter_ranges() {
       {"post_process_untangle_patience", at_least(0, kIterations, "passes")},
       {"post_process_untangle_max_contacts", at_least(0, 1e9, "crossing edges")},
       {"post_process_untangle_settle_iterations", at_least(0, kIterations, "iterations")},
+      {"post_process_untangle_rounds", at_least(1, kIterations, "rounds")},
   };
   return ranges;
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <functional>
 #include <numeric>
+#include <optional>
 
 #include "engine/core/mesh_geometry.h"
 #include "engine/core/mesh_topology.h"
@@ -28,15 +29,18 @@ constexpr int kUntangleRegionRings = 8;
 
 // Pieces still through each other after the settle (those of one batch, or a seed wrapped tangled:
 // the layering only orders batches) are pulled apart along their intersection contours
-// (untangle.h), a few solver iterations after each pass letting the cloth around them follow. The
-// passes stop once no contact is left, when the count has not improved for a while, or once the
-// session has done post_process_work (session_work: its work so far); a garment
-// still tangled then gets back its positions from before the passes, which moved crossing
-// vertices only and would leave it worse elsewhere (folds, open seams) for nothing.
+// (untangle.h), post_process_untangle_iterations solver iterations (one) after each pass letting
+// the cloth around them follow. The passes stop once no contact is left, when the count has not
+// improved for a while, or once the session has done post_process_work (session_work: its work so
+// far); a garment still tangled then gets back its positions from before the passes, which moved
+// crossing vertices only and would leave it worse elsewhere (folds, open seams) for nothing. Once
+// apart, hold_apart(positions) gives the layers that were tangled their own repulsion, and the
+// garment settles; if it crosses again, another round of passes starts from the settled cloth.
 void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vector<bool>& arranged,
               Objective& objective, SolverSettings settings, Eigen::MatrixX3d& positions,
               Observer* observer, PostProcessReport& result,
-              const std::function<double()>& session_work) {
+              const std::function<double()>& session_work,
+              const std::function<void(const Eigen::MatrixX3d&)>& hold_apart) {
   const Garment& garment = context.garment;
   const Eigen::VectorXi& welded = context.welded;
   const ArrangementParameters& parameters = context.parameters;
@@ -70,75 +74,98 @@ void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vec
   if (contacts.empty() || result.initial_contacts > parameters.post_process_untangle_max_contacts)
     return;
 
-  // The passes move the contacts' vertices and the few solver iterations barely move the rest:
-  // between passes only the cloth near the first contacts is looked at again, and the whole
-  // garment once at the end.
-  std::vector<int> sources;
-  for (const Eigen::Vector2i& contact : contacts) {
-    sources.insert(sources.end(), {mesh.edges(contact.x(), 0), mesh.edges(contact.x(), 1)});
-    for (int k = 0; k < 3; ++k)
-      sources.push_back(garment.triangles(contact.y(), k));
-  }
-  const std::vector<int> ring = context.graph.rings(
-      sources, std::vector<char>(garment.vertex_count(), 1), kUntangleRegionRings);
-  const auto near = [&](int v) { return ring[v] >= 0; };
-  std::vector<int> region_edges, region_triangles;
-  for (int e : all_edges)
-    if (near(mesh.edges(e, 0)) && near(mesh.edges(e, 1))) region_edges.push_back(e);
-  for (int t : all_triangles)
-    if (near(garment.triangles(t, 0)) && near(garment.triangles(t, 1)) &&
-        near(garment.triangles(t, 2)))
-      region_triangles.push_back(t);
-
   const Eigen::MatrixX3d settled = positions;
   const double settled_energy = result.final_energy;
-  settings.max_iterations = parameters.post_process_untangle_iterations;
-  settings.stage = "post-process: untangle";
-  std::size_t fewest = contacts.size();
-  for (int pass = 0, since_fewest = 0;
-       pass < parameters.post_process_untangle_passes && !contacts.empty() &&
-       since_fewest < parameters.post_process_untangle_patience &&
-       session_work() < parameters.post_process_work;
-       ++pass) {
-    const Eigen::MatrixX3d displacement =
-        contour_minimizing_displacement(positions, garment.triangles, mesh, vertex_piece, contacts,
-                                        parameters.post_process_untangle_step);
-    for (int v = 0; v < garment.vertex_count(); ++v)
-      if (objective.active_set().role(v) == VertexRole::Free)
-        positions.row(v) += displacement.row(v);
-    ++result.untangle_passes;
+  // The last untangled positions whose settle found its way back through: kept if no later round
+  // comes apart and stays apart.
+  std::optional<Eigen::MatrixX3d> untangled;
+  double untangled_energy = 0.0;
+  bool cancelled = false;
+  int pass = 0;
+  for (int round = 0;
+       round < parameters.post_process_untangle_rounds && !contacts.empty() && !cancelled;
+       ++round) {
+    // The passes move the contacts' vertices and the few solver iterations barely move the rest:
+    // between passes only the cloth near the round's first contacts is looked at again, and the
+    // whole garment once at the end.
+    std::vector<int> sources;
+    for (const Eigen::Vector2i& contact : contacts) {
+      sources.insert(sources.end(), {mesh.edges(contact.x(), 0), mesh.edges(contact.x(), 1)});
+      for (int k = 0; k < 3; ++k)
+        sources.push_back(garment.triangles(contact.y(), k));
+    }
+    const std::vector<int> ring = context.graph.rings(
+        sources, std::vector<char>(garment.vertex_count(), 1), kUntangleRegionRings);
+    const auto near = [&](int v) { return ring[v] >= 0; };
+    std::vector<int> region_edges, region_triangles;
+    for (int e : all_edges)
+      if (near(mesh.edges(e, 0)) && near(mesh.edges(e, 1))) region_edges.push_back(e);
+    for (int t : all_triangles)
+      if (near(garment.triangles(t, 0)) && near(garment.triangles(t, 1)) &&
+          near(garment.triangles(t, 2)))
+        region_triangles.push_back(t);
+
+    settings.max_iterations = parameters.post_process_untangle_iterations;
+    settings.stage = "post-process: untangle";
+    std::size_t fewest = contacts.size();
+    for (int since_fewest = 0;
+         pass < parameters.post_process_untangle_passes && !contacts.empty() &&
+         since_fewest < parameters.post_process_untangle_patience &&
+         session_work() < parameters.post_process_work;
+         ++pass) {
+      const Eigen::MatrixX3d displacement =
+          contour_minimizing_displacement(positions, garment.triangles, mesh, vertex_piece,
+                                          contacts, parameters.post_process_untangle_step);
+      for (int v = 0; v < garment.vertex_count(); ++v)
+        if (objective.active_set().role(v) == VertexRole::Free)
+          positions.row(v) += displacement.row(v);
+      ++result.untangle_passes;
+      const SolveReport solved = solve(objective, positions, settings, observer);
+      result.iterations += solved.iterations;
+      result.work += solved.work;
+      result.final_energy = solved.final_energy;
+      if (solved.reason == StopReason::Cancelled) {
+        cancelled = true;
+        break;
+      }
+      contacts = arranged_contacts(region_edges, region_triangles);
+      if (contacts.size() < fewest) {
+        fewest = contacts.size();
+        since_fewest = 0;
+      } else {
+        ++since_fewest;
+      }
+    }
+    if (cancelled) break;
+    if (contacts.empty()) contacts = arranged_contacts(all_edges, all_triangles);
+    if (!contacts.empty()) break;
+
+    // Untangled: the cloth round the moved vertices settles, held apart where it had crossed, and
+    // keeps the settled shape unless the pieces found their way back through each other; then
+    // the next round starts from where they did.
+    untangled = positions;
+    untangled_energy = result.final_energy;
+    hold_apart(positions);
+    settings.max_iterations = parameters.post_process_untangle_settle_iterations;
     const SolveReport solved = solve(objective, positions, settings, observer);
     result.iterations += solved.iterations;
     result.work += solved.work;
-    result.final_energy = solved.final_energy;
     if (solved.reason == StopReason::Cancelled) break;
-    contacts = arranged_contacts(region_edges, region_triangles);
-    if (contacts.size() < fewest) {
-      fewest = contacts.size();
-      since_fewest = 0;
-    } else {
-      ++since_fewest;
+    contacts = arranged_contacts(all_edges, all_triangles);
+    if (contacts.empty()) {
+      result.final_energy = solved.final_energy;
+      result.final_contacts = 0;
+      return;
     }
   }
-  if (contacts.empty()) contacts = arranged_contacts(all_edges, all_triangles);
-  result.final_contacts = static_cast<int>(contacts.size());
-  if (!contacts.empty()) {
-    positions = settled;
-    result.final_energy = settled_energy;
-    result.final_contacts = result.initial_contacts;
+  if (untangled) {
+    positions = *untangled;
+    result.final_energy = untangled_energy;
+    result.final_contacts = 0;
     return;
   }
-  // Untangled: the cloth round the moved vertices settles, and keeps the settled shape unless the
-  // pieces found their way back through each other.
-  const Eigen::MatrixX3d untangled = positions;
-  settings.max_iterations = parameters.post_process_untangle_settle_iterations;
-  const SolveReport solved = solve(objective, positions, settings, observer);
-  result.iterations += solved.iterations;
-  result.work += solved.work;
-  if (solved.reason != StopReason::Cancelled && arranged_contacts(all_edges, all_triangles).empty())
-    result.final_energy = solved.final_energy;
-  else
-    positions = untangled;
+  positions = settled;
+  result.final_energy = settled_energy;
 }
 
 // Iterations of one round of the longer settle, between checks of the verdict's strain and gaps.
@@ -248,6 +275,21 @@ PostProcessReport post_process(ArrangementContext& context,
   self.buffer = energy.repulsion_buffer;
   self.search_radius = energy.self_repulsion_search_radius;
   self.refresh_interval = energy.self_repulsion_refresh_interval;
+  const double own_stiffness = self.stiffness * parameters.post_process_own_layer_repulsion_factor;
+  // Layers that touch themselves settle without their own repulsion, which would hold them
+  // through themselves; once untangled they take it, so that they settle apart.
+  std::vector<const std::vector<int>*> tangled_layers;
+  const auto hold_apart = [&](const Eigen::MatrixX3d& untangled) {
+    std::vector<const std::vector<int>*> still_tangled;
+    for (const std::vector<int>* layer : tangled_layers) {
+      if (auto own_layer =
+              own_cloth_repulsion(context, *layer, untangled, own_stiffness, self.buffer))
+        objective.add(own_layer);
+      else
+        still_tangled.push_back(layer);
+    }
+    tangled_layers = std::move(still_tangled);
+  };
   for (const std::vector<int>& layer : layers) {
     std::vector<int> obstacles;
     for (int t = 0; t < garment.triangle_count(); ++t)
@@ -270,11 +312,13 @@ PostProcessReport post_process(ArrangementContext& context,
     if (!obstacles.empty() && !repelled.empty())
       objective.add(
           std::make_shared<SelfRepulsionPotential>(garment.triangles, repelled, obstacles, self));
-    if (parameters.post_process_own_layer_repulsion_factor > 0.0)
-      if (auto own_layer = own_cloth_repulsion(
-              context, layer, positions,
-              self.stiffness * parameters.post_process_own_layer_repulsion_factor, self.buffer))
+    if (parameters.post_process_own_layer_repulsion_factor > 0.0) {
+      if (auto own_layer =
+              own_cloth_repulsion(context, layer, positions, own_stiffness, self.buffer))
         objective.add(own_layer);
+      else
+        tangled_layers.push_back(&layer);
+    }
     for (int piece : layer)
       earlier[piece] = true;
   }
@@ -307,8 +351,8 @@ PostProcessReport post_process(ArrangementContext& context,
   settings.stage = "post-process";
   settings.on_iterate = on_iterate;
   if (parameters.post_process_untangle_passes > 0 && solved.reason != StopReason::Cancelled)
-    untangle(context, mesh, arranged, objective, settings, positions, observer, result,
-             work_so_far);
+    untangle(context, mesh, arranged, objective, settings, positions, observer, result, work_so_far,
+             hold_apart);
 
   // A creased garment would fail the verdict anyway: stiffer bending smooths its creases, and the
   // cloth it moves may come to cross, so it is untangled again.
@@ -323,7 +367,7 @@ PostProcessReport post_process(ArrangementContext& context,
     result.final_energy = solved.final_energy;
     if (parameters.post_process_untangle_passes > 0 && solved.reason != StopReason::Cancelled)
       untangle(context, mesh, arranged, objective, settings, positions, observer, result,
-               work_so_far);
+               work_so_far, hold_apart);
   }
 
   // The shared potentials go back to their arrangement strengths.

@@ -17,7 +17,8 @@
 //   other cuff piece it was arranged after, and the garment comes out clean, the crossing gone
 //   (the remeshes excluded); with every action allowed a remesh comes first and rescues it: the
 //   garment chosen has its own mesh, finer or coarser than the first pass's, and it is the one
-//   measured clean.
+//   measured clean. Its first pass uses the untangling of before untangle_rounds, under which it
+//   crosses (today's untangling separates it in the post-process).
 
 #include <tbb/global_control.h>
 #include <QtTest>
@@ -26,6 +27,7 @@
 #include "engine/seeding/scene.h"
 #include "support/test_environment.h"
 #include "support/test_paths.h"
+#include "support/untangling_before_rounds.h"
 
 using namespace garment;
 
@@ -65,7 +67,9 @@ const CuffFixture& cuff_fixture() {
     f.scene = load_scene(test::test_data("patterns/recovery/gc_0477_specification.json"),
                          test::test_data("bodies/f_smpl_average_A40.obj"));
     f.body = std::make_unique<BodyReference>(f.scene->body->mesh);
-    auto session = std::make_shared<Session>(f.scene);
+    // The untangling as it was when this case was found: today's pulls the cuff out of the seed
+    // in the post-process itself, and a reorder then rescues none of the 500.
+    auto session = std::make_shared<Session>(f.scene, test::untangling_before_rounds());
     session->run();
     f.first_pass = session;
     return f;
