@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include "command_line.h"
 #include "commands.h"
@@ -7,9 +8,11 @@
 #include "engine/body/default_body.h"
 #include "engine/io/garment_obj.h"
 #include "engine/io/quality_json.h"
+#include "engine/pattern/flat_regions.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/outfit.h"
 #include "engine/quality/garment_metrics.h"
+#include "engine/quality/region_metrics.h"
 #include "engine/quality/verdict.h"
 
 namespace garment::cli {
@@ -27,15 +30,21 @@ int check_command(const std::vector<std::string>& args) {
 
   // Several patterns (comma-separated) are an outfit, as `run` takes them.
   const std::vector<std::string> pattern_paths = line.list("--pattern");
-  const Garment garment = build_garment(
-      pattern_paths.size() == 1 ? load_pattern(pattern_paths.front())
-                                : load_outfit_pattern({pattern_paths.begin(), pattern_paths.end()}),
-      options);
+  const Pattern pattern = pattern_paths.size() == 1
+                              ? load_pattern(pattern_paths.front())
+                              : load_outfit_pattern({pattern_paths.begin(), pattern_paths.end()});
+  const Garment garment = build_garment(pattern, options);
   const Eigen::MatrixX3d positions = read_garment_obj(garment_path, garment);
   const BodyMesh body = load_body_obj(body_path);
   const BodyReference reference(body);
+  // A quilt's pieces are judged for placement by the regions they make, as `run` judges them.
+  const std::optional<MeshedRegions> regions =
+      pattern_paths.size() == 1 ? mesh_flat_regions(pattern, options) : std::nullopt;
   const GarmentMetrics metrics =
-      measure_garment(garment, positions, &reference, expected_regions_from_names(garment));
+      regions
+          ? measure_region_pieces(garment, positions, &reference, regions->garment,
+                                  regions->region_of_panel)
+          : measure_garment(garment, positions, &reference, expected_regions_from_names(garment));
   const QualityVerdict verdict = judge_garment(garment, metrics);
 
   if (line.has("--json")) {

@@ -18,8 +18,10 @@
 #include "engine/io/parameters_json.h"
 #include "engine/io/session_report.h"
 #include "engine/io/sewn_export.h"
+#include "engine/pattern/region_transfer.h"
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/outfit_crossings.h"
+#include "engine/quality/region_metrics.h"
 #include "engine/quality/verdict.h"
 #include "engine/recovery/recovery.h"
 #include "engine/seeding/piece_classifier.h"
@@ -134,10 +136,21 @@ int run_command(const std::vector<std::string>& args) {
   SessionOptions options;
   if (parameters) options.arrangement = load_parameters(*parameters);
   if (line.has("--clearance")) options.arrangement.clearance = clearance_mm / 1000.0;
-  const std::shared_ptr<const Scene> scene =
-      pattern_paths.size() == 1 ? load_scene(pattern_paths.front(), body_path, scene_options)
-                                : load_outfit_scene({pattern_paths.begin(), pattern_paths.end()},
-                                                    body_path, scene_options);
+  std::shared_ptr<const Scene> scene;
+  // A quilt is arranged as the panels it was cut from, then written and judged as its pieces.
+  std::optional<RegionScene> regions;
+  if (pattern_paths.size() == 1) {
+    const Pattern pattern = load_pattern(pattern_paths.front());
+    auto body = std::make_shared<const Body>(load_body(body_path, scene_options.distance_field));
+    regions = make_region_scene(pattern, body, scene_options);
+    scene = regions ? regions->scene
+                    : make_scene(std::make_shared<const Garment>(
+                                     build_garment(pattern, scene_options.meshing)),
+                                 body, scene_options);
+  } else {
+    scene =
+        load_outfit_scene({pattern_paths.begin(), pattern_paths.end()}, body_path, scene_options);
+  }
   for (const std::string& warning : scene->body->warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const Garment& garment = *scene->garment;
@@ -170,29 +183,43 @@ int run_command(const std::vector<std::string>& args) {
   const BodyReference reference(scene->body->mesh);
   const RecoveryResult recovered = recover(first_pass, &reference, recovery);
   const Session& chosen = *recovered.session;
-  const Garment& chosen_garment = *chosen.scene().garment;  // a remesh has its own
-  const QualityVerdict& verdict = recovered.verdict;
+  // The garment written: the session's (a remesh has its own), or a quilt's pieces placed from
+  // the regions the session arranged, and judged again.
+  const Garment& chosen_garment = regions ? *regions->pieces : *chosen.scene().garment;
+  const Eigen::MatrixX3d positions =
+      regions ? transfer_region_positions(*regions->pieces, *chosen.scene().garment,
+                                          regions->region_of_panel, chosen.positions())
+              : chosen.positions();
+  const GarmentMetrics metrics =
+      regions ? measure_region_pieces(chosen_garment, positions, &reference,
+                                      *chosen.scene().garment, regions->region_of_panel)
+              : recovered.metrics;
+  const QualityVerdict verdict =
+      regions ? judge_garment(chosen_garment, metrics) : recovered.verdict;
   // Every output is complete on disk before the first replaces its destination: a failure or a
   // signal up to here leaves all of them as they were.
   AtomicFileSet outputs;
-  outputs.stage(*output, format_garment_obj(chosen_garment, chosen.positions()));
+  outputs.stage(*output, format_garment_obj(chosen_garment, positions));
   if (glb)
     outputs.stage(
-        *glb, format_glb(garment_glb_meshes(chosen_garment, chosen.positions(), scene->body.get()),
-                         *glb));
+        *glb, format_glb(garment_glb_meshes(chosen_garment, positions, scene->body.get()), *glb));
   for (SewnExport kind : exports) {
     const std::filesystem::path path = sewn_export_path(*output, kind);
-    outputs.stage(path, format_sewn_export(kind, chosen_garment, chosen.positions(),
-                                           scene->body.get(), path));
+    outputs.stage(path,
+                  format_sewn_export(kind, chosen_garment, positions, scene->body.get(), path));
   }
   if (report)
-    outputs.stage(*report,
-                  session_report_json(chosen, recovered.metrics, verdict, &recovered) + "\n");
+    outputs.stage(*report, session_report_json(chosen, metrics, verdict, &recovered,
+                                               regions ? &*regions : nullptr) +
+                               "\n");
   outputs.commit();
 
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!line.has("--quiet")) {
+    if (regions)
+      std::printf("%zu pieces sewn flat into %zu regions, arranged as the regions\n",
+                  regions->pieces->pieces.size(), regions->pieces_of_region.size());
     std::printf("%s: %zu pieces, %d vertices, %zu batches, seed: %s\n",
                 chosen_garment.pattern.source.c_str(), chosen_garment.pieces.size(),
                 chosen_garment.vertex_count(), chosen.report().batches.size(),
@@ -214,7 +241,7 @@ int run_command(const std::vector<std::string>& args) {
     for (const QualityFailure& failure : verdict.failures)
       std::printf("  %s: %s\n", std::string(failure_kind_name(failure.kind)).c_str(),
                   failure.message.c_str());
-    print_outfit_crossings(*scene, recovered.metrics);
+    print_outfit_crossings(*scene, metrics);
   }
   return verdict.ok() ? kSuccess : kQualityFailed;
 }

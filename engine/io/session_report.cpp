@@ -56,14 +56,22 @@ nlohmann::json outfit_json(const Scene& scene, const SessionReport& report,
 }  // namespace
 
 std::string session_report_json(const Session& session, const GarmentMetrics& metrics,
-                                const QualityVerdict& verdict, const RecoveryResult* recovery) {
+                                const QualityVerdict& verdict, const RecoveryResult* recovery,
+                                const RegionScene* regions) {
   const Garment& garment = *session.scene().garment;
   const SessionReport& report = session.report();
   nlohmann::json json;
   json["pattern"] = garment.pattern.source;
   json["body"] = session.scene().body->mesh.source;
-  json["vertices"] = garment.vertex_count();
-  json["pieces"] = garment.pieces.size();
+  const Garment& judged = regions ? *regions->pieces : garment;
+  json["vertices"] = judged.vertex_count();
+  json["pieces"] = judged.pieces.size();
+  if (regions) {
+    json["regions"] = nlohmann::json::array();
+    for (std::size_t r = 0; r < garment.pieces.size(); ++r)
+      json["regions"].push_back(
+          {{"name", garment.pieces[r].name}, {"pieces", regions->pieces_of_region[r]}});
+  }
   json["seed"] = seed_json(garment, report.seed);
   if (!session.scene().outfit.empty())
     json["outfit"] = outfit_json(session.scene(), report, metrics);
@@ -114,7 +122,7 @@ std::string session_report_json(const Session& session, const GarmentMetrics& me
   json["work"] = report.work;
   json["seconds"] = report.seconds;
   json["cancelled"] = report.cancelled;
-  json["quality"] = nlohmann::json::parse(quality_json(garment, metrics, verdict));
+  json["quality"] = nlohmann::json::parse(quality_json(judged, metrics, verdict));
   json["parameters"] = nlohmann::json::parse(parameters_json(session.options().arrangement));
   if (recovery) {
     nlohmann::json attempts = nlohmann::json::array();

@@ -14,8 +14,12 @@ namespace garment {
 
 // recovery: the attempts that led to `session` (recovery.h), listed under "recovery"; none: a
 // session run once.
+// regions: a quilt arranged as its regions (seeding/scene.h): `metrics` and `verdict` are of its
+// pieces, as are "pieces", "vertices" and "quality"; "regions" lists the regions with their piece
+// counts, and the seed, order and batches name the regions the session arranged.
 std::string session_report_json(const Session& session, const GarmentMetrics& metrics,
                                 const QualityVerdict& verdict,
-                                const RecoveryResult* recovery = nullptr);
+                                const RecoveryResult* recovery = nullptr,
+                                const RegionScene* regions = nullptr);
 
 }  // namespace garment

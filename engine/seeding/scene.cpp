@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "engine/pattern/flat_regions.h"
 #include "engine/pattern/outfit.h"
 #include "engine/quality/flat_placement.h"
 
@@ -61,6 +62,20 @@ std::shared_ptr<const Scene> load_scene(const std::filesystem::path& pattern,
   if (observer) observer->progress("load body", -1.0);
   auto loaded = std::make_shared<const Body>(load_body(body, options.distance_field));
   return make_scene(std::move(garment), std::move(loaded), options);
+}
+
+std::optional<RegionScene> make_region_scene(const Pattern& pattern,
+                                             std::shared_ptr<const Body> body,
+                                             const SceneOptions& options) {
+  std::optional<MeshedRegions> regions = mesh_flat_regions(pattern, options.meshing);
+  if (!regions) return std::nullopt;
+  RegionScene result;
+  result.pieces = std::make_shared<const Garment>(build_garment(pattern, options.meshing));
+  result.scene = make_scene(std::make_shared<const Garment>(std::move(regions->garment)),
+                            std::move(body), options);
+  result.region_of_panel = std::move(regions->region_of_panel);
+  result.pieces_of_region = std::move(regions->pieces_of_region);
+  return result;
 }
 
 std::vector<int> outfit_piece_garments(const Scene& scene) {

@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "engine/body/body.h"
 #include "engine/core/observer.h"
@@ -78,6 +80,21 @@ std::shared_ptr<const Scene> make_outfit_scene(std::shared_ptr<const Garment> me
 std::shared_ptr<const Scene> make_scene(std::shared_ptr<const Garment> garment,
                                         std::shared_ptr<const Body> body,
                                         const SceneOptions& options = {});
+
+// A pattern whose pieces are sewn flat into regions of more than two (a quilt,
+// pattern/flat_regions.h) is arranged as its regions: `scene` has one piece per region, since the
+// classifier, the seed and the start shapes know panels, not the cells of a quilt; `pieces` is
+// the pattern's own garment, which pattern/region_transfer.h places from the scene's arrangement.
+struct RegionScene {
+  std::shared_ptr<const Scene> scene;
+  std::shared_ptr<const Garment> pieces;
+  std::vector<int> region_of_panel;   // #pieces: the scene's piece each one is part of
+  std::vector<int> pieces_of_region;  // #scene pieces: how many pieces each one holds
+};
+// nullopt when the pattern has no such region (mesh_flat_regions): it is arranged as it is.
+std::optional<RegionScene> make_region_scene(const Pattern& pattern,
+                                             std::shared_ptr<const Body> body,
+                                             const SceneOptions& options = {});
 
 // `garment`'s pattern meshed again at `target_edge_length` (metres) on `body`, its pieces
 // classified again with the bundled weights (the seed graph reads the meshed outlines): the scene

@@ -1,0 +1,86 @@
+// A quilt arranged as its regions (issue 43): gc_0022 (shirt front and back halves, made for
+// f_smpl_average_A40) cut into 10 cm cells, 69 pieces. Arranged as the two panels its cells make
+// (front and back), then placed and judged as its 69 pieces, it is clean, every cut closed; the
+// same pieces arranged one by one are not.
+
+#include <QtTest>
+
+#include "engine/body/body.h"
+#include "engine/pattern/flat_regions.h"
+#include "engine/pattern/quilting.h"
+#include "engine/pattern/region_transfer.h"
+#include "engine/quality/expected_region.h"
+#include "engine/quality/garment_metrics.h"
+#include "engine/quality/region_metrics.h"
+#include "engine/quality/verdict.h"
+#include "engine/seeding/scene.h"
+#include "engine/session/session.h"
+#include "support/test_paths.h"
+
+using namespace garment;
+
+namespace {
+
+Pattern quilted_shirt() {
+  const Pattern original = load_pattern(test::test_data("patterns/gc_0022_specification.json"));
+  QuiltOptions options;
+  options.cell = 0.1;
+  return parse_pattern(quilt_pattern(original, options).specification, "gc_0022 quilted");
+}
+
+std::string failures(const QualityVerdict& verdict) {
+  std::string text;
+  for (const QualityFailure& failure : verdict.failures)
+    text += failure.message + "; ";
+  return text;
+}
+
+}  // namespace
+
+class RegionArrangementTest : public QObject {
+  Q_OBJECT
+ private slots:
+  void initTestCase() {
+    body_ =
+        std::make_shared<const Body>(load_body(test::test_data("bodies/f_smpl_average_A40.obj")));
+  }
+
+  void aQuiltArrangedAsItsRegionsIsClean() {
+    const Pattern quilt = quilted_shirt();
+    const std::optional<RegionScene> regions = make_region_scene(quilt, body_);
+    QVERIFY(regions);
+    QCOMPARE(regions->pieces->pieces.size(), quilt.panels.size());
+    QCOMPARE(regions->scene->garment->pieces.size(), std::size_t(2));
+    Session session(regions->scene);
+    session.run();
+    const BodyReference reference(body_->mesh);
+    const Garment& regions_garment = *regions->scene->garment;
+    const Eigen::MatrixX3d positions = transfer_region_positions(
+        *regions->pieces, regions_garment, regions->region_of_panel, session.positions());
+    const GarmentMetrics metrics = measure_region_pieces(*regions->pieces, positions, &reference,
+                                                         regions_garment, regions->region_of_panel);
+    const QualityVerdict verdict = judge_garment(*regions->pieces, metrics);
+    QVERIFY2(verdict.ok(), failures(verdict).c_str());
+    const std::vector<bool> flat = stitches_sewn_flat(quilt);
+    for (std::size_t s = 0; s < flat.size(); ++s)
+      if (flat[s]) QCOMPARE(metrics.stitch_max_gap_m[s], 0.0);
+  }
+
+  // The control: the session on the 69 pieces themselves.
+  void theSamePiecesArrangedOneByOneAreNot() {
+    auto pieces = std::make_shared<const Garment>(build_garment(quilted_shirt()));
+    Session session(make_scene(pieces, body_));
+    session.run();
+    const BodyReference reference(body_->mesh);
+    const QualityVerdict verdict =
+        judge_garment(*pieces, measure_garment(*pieces, session.positions(), &reference,
+                                               expected_regions_from_names(*pieces)));
+    QVERIFY(!verdict.ok());
+  }
+
+ private:
+  std::shared_ptr<const Body> body_;
+};
+
+QTEST_APPLESS_MAIN(RegionArrangementTest)
+#include "test_region_arrangement.moc"
