@@ -208,8 +208,11 @@ std::optional<MeshedRegions> mesh_flat_regions(const Pattern& pattern,
                                                const MeshingOptions& options) {
   std::optional<RegionPattern> regions = merge_flat_regions(pattern);
   if (!regions) return std::nullopt;
+  MeshingOptions coarse = options;
+  coarse.target_edge_length =
+      std::max(options.target_edge_length, MeshingOptions().target_edge_length);
   try {
-    return MeshedRegions{build_garment(regions->pattern, options),
+    return MeshedRegions{build_garment(regions->pattern, coarse),
                          std::move(regions->region_of_panel), std::move(regions->pieces_of_region)};
   } catch (const BudgetError&) {
     throw;

@@ -174,10 +174,12 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
       }
       std::shared_ptr<const Scene> remeshed;
       if (action.kind == RecoveryActionKind::Remesh) {
-        // Meshed here, before the round: a mesh past the vertex budget is no attempt.
+        // Meshed here, before the round: a mesh past the vertex budget (BudgetError), or an
+        // outline the mesher refuses at that size (a dart's tip 0.3 mm from a collar's curve,
+        // gc_0357's front quilted), is no attempt.
         try {
           remeshed = remesh_scene(result.session->scene(), action.edge_length);
-        } catch (const BudgetError&) {
+        } catch (const InputError&) {
           tried.push_back(key);
           continue;
         }

@@ -85,6 +85,7 @@ std::shared_ptr<const Scene> make_scene(std::shared_ptr<const Garment> garment,
 // pattern/flat_regions.h) is arranged as its regions: `scene` has one piece per region, since the
 // classifier, the seed and the start shapes know panels, not the cells of a quilt; `pieces` is
 // the pattern's own garment, which pattern/region_transfer.h places from the scene's arrangement.
+// The regions are meshed no finer than 20 mm (mesh_flat_regions); the pieces as `options` say.
 struct RegionScene {
   std::shared_ptr<const Scene> scene;
   std::shared_ptr<const Garment> pieces;

@@ -108,6 +108,20 @@ class FlatRegionsTest : public QObject {
     QCOMPARE(garment.pieces.size(), std::size_t(2));
   }
 
+  // The regions are meshed as asked, but no finer than 20 mm (the arrangement's default).
+  void theRegionsAreMeshedNoFinerThanTheDefault() {
+    const Pattern quilt =
+        quilted(load_pattern(test::test_data("patterns/gc_0022_specification.json")), 0.1);
+    for (const auto& [asked, meshed] : {std::pair{0.01, 0.02}, std::pair{0.03, 0.03}}) {
+      MeshingOptions options;
+      options.target_edge_length = asked;
+      const std::optional<MeshedRegions> regions = mesh_flat_regions(quilt, options);
+      QVERIFY(regions);
+      QCOMPARE(regions->garment.target_edge_length, meshed);
+      QCOMPARE(regions->garment.pieces.size(), std::size_t(2));
+    }
+  }
+
   // Four pieces round a hole do not close into one outline: they stay as they are, sewn flat.
   void aRegionRoundAHoleKeepsItsPieces() {
     const Pattern frame = parse_pattern(kFrame, "frame.json");
