@@ -181,6 +181,11 @@ int run_command(const std::vector<std::string>& args) {
   // A garment that fails its verdict is arranged again, from the batch at fault (--attempts 1:
   // the first pass as it is).
   const BodyReference reference(scene->body->mesh);
+  if (regions)
+    recovery.judge = [&](const Session& attempt, const GarmentMetrics&) {
+      return judge_region_pieces(*regions->pieces, *attempt.scene().garment,
+                                 regions->region_of_panel, attempt.positions(), &reference);
+    };
   const RecoveryResult recovered = recover(first_pass, &reference, recovery);
   const Session& chosen = *recovered.session;
   // The garment written: the session's (a remesh has its own), or a quilt's pieces placed from

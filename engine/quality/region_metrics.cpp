@@ -1,5 +1,7 @@
 #include "engine/quality/region_metrics.h"
 
+#include <algorithm>
+
 #include "engine/pattern/region_transfer.h"
 
 namespace garment {
@@ -22,6 +24,25 @@ GarmentMetrics measure_region_pieces(const Garment& pieces, const Eigen::MatrixX
       if (region.piece == region_of_panel[pieces.pieces[p].panel])
         metrics.misplaced.push_back({static_cast<int>(p), region.problem});
   return metrics;
+}
+
+QualityVerdict judge_region_pieces(const Garment& pieces, const Garment& regions,
+                                   const std::vector<int>& region_of_panel,
+                                   const Eigen::MatrixX3d& region_positions,
+                                   const BodyReference* body) {
+  const Eigen::MatrixX3d positions =
+      transfer_region_positions(pieces, regions, region_of_panel, region_positions);
+  QualityVerdict verdict = judge_garment(
+      pieces, measure_region_pieces(pieces, positions, body, regions, region_of_panel));
+  for (QualityFailure& failure : verdict.failures) {
+    std::vector<int> lifted;
+    for (int piece : failure.pieces)
+      lifted.push_back(region_of_panel[pieces.pieces[piece].panel]);
+    std::sort(lifted.begin(), lifted.end());
+    lifted.erase(std::unique(lifted.begin(), lifted.end()), lifted.end());
+    failure.pieces = std::move(lifted);
+  }
+  return verdict;
 }
 
 }  // namespace garment

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/quality/garment_metrics.h"
+#include "engine/quality/verdict.h"
 
 namespace garment {
 
@@ -19,5 +20,16 @@ namespace garment {
 GarmentMetrics measure_region_pieces(const Garment& pieces, const Eigen::MatrixX3d& positions,
                                      const BodyReference* body, const Garment& regions,
                                      const std::vector<int>& region_of_panel);
+
+// The verdict on a quilt arranged as its regions, for the recovery (RecoverySettings::judge): its
+// pieces placed from region_positions (#regions' V×3, transfer_region_positions) and judged as
+// they will be written, each failure's pieces lifted to their regions, since the diagnosis reads
+// the session's garment. The regions' own verdict is laxer: a piece's fine mesh measures stretch
+// in more directions than a region's coarse one (quilted gc_0057, 20.9 % on its pieces, clean
+// as its regions).
+QualityVerdict judge_region_pieces(const Garment& pieces, const Garment& regions,
+                                   const std::vector<int>& region_of_panel,
+                                   const Eigen::MatrixX3d& region_positions,
+                                   const BodyReference* body);
 
 }  // namespace garment

@@ -68,14 +68,17 @@ GarmentChecker make_checker(const Garment& garment, const BodyReference* body) {
 
 // What an attempt's record says of its garment: the verdict, its rank and, for an outfit, the
 // crossings between garments.
-void judge_into(const Scene& scene, const GarmentMetrics& metrics, AttemptRecord& record) {
-  record.verdict = judge_garment(*scene.garment, metrics);
+void judge_into(const Session& session, const GarmentMetrics& metrics,
+                const RecoverySettings& settings, AttemptRecord& record) {
+  const Scene& scene = session.scene();
+  record.verdict =
+      settings.judge ? settings.judge(session, metrics) : judge_garment(*scene.garment, metrics);
   record.rank = rank_verdict(record.verdict);
   if (!scene.outfit.empty())
     record.between_garments = crossings_between_garments(outfit_piece_garments(scene), metrics);
 }
 
-void run_attempt(const Session& base, const BodyReference* body, double post_process_weight,
+void run_attempt(const Session& base, const BodyReference* body, const RecoverySettings& settings,
                  Observer* observer, Attempt& attempt) {
   const auto start = std::chrono::steady_clock::now();
   const RecoveryAction& action = attempt.action;
@@ -94,9 +97,9 @@ void run_attempt(const Session& base, const BodyReference* body, double post_pro
   record.action = to_string(action.kind);
   record.reason = action.reason;
   record.resume_batch = action.resume_batch;
-  judge_into(scene, attempt.metrics, record);
+  judge_into(*attempt.session, attempt.metrics, settings, record);
   record.work = attempt.session->report().work - work_before;
-  attempt.cost = cost_since(attempt.session->report(), work_before, post_process_weight);
+  attempt.cost = cost_since(attempt.session->report(), work_before, settings.post_process_weight);
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -122,7 +125,7 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
   result.metrics = make_checker(garment, body).measure(first_pass->positions());
   AttemptRecord first;
   first.action = "first pass";
-  judge_into(scene, result.metrics, first);
+  judge_into(*first_pass, result.metrics, settings, first);
   result.verdict = first.verdict;
   first.work = first_pass->report().work;
   first.seconds = first_pass->report().seconds;
@@ -200,9 +203,7 @@ RecoveryResult recover(std::shared_ptr<const Session> first_pass, const BodyRefe
       threads.emplace_back([&, i] {
         try {
           tbb::task_arena arena(share);
-          arena.execute([&] {
-            run_attempt(*result.session, body, settings.post_process_weight, observer, round[i]);
-          });
+          arena.execute([&] { run_attempt(*result.session, body, settings, observer, round[i]); });
         } catch (...) {
           errors[i] = std::current_exception();
         }

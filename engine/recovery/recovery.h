@@ -12,6 +12,7 @@
 // design that cannot fit the body (cannot_fit.h) gets no attempt, or no further one when the best
 // garment of a round shows it (the first pass had pieces misplaced, so it did not say).
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -50,6 +51,11 @@ struct RecoverySettings {
   // gained, gc_0282 kept).
   double garment_work = 125e6;
   int threads = 0;  // threads to share among concurrent attempts; 0: TBB's default
+  // The verdict on a session's garment from its metrics (of the session's garment); empty:
+  // judge_garment. A quilt arranged as its regions is judged by the pieces it is written as
+  // (quality/region_metrics.h, judge_region_pieces). Called from the attempts' threads. Its
+  // failures name the session's pieces, which the diagnosis reads.
+  std::function<QualityVerdict(const Session&, const GarmentMetrics&)> judge;
   std::vector<RecoveryActionKind> excluded;  // actions never taken (none: all may be)
 };
 

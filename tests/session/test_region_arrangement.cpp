@@ -4,6 +4,7 @@
 // same pieces arranged one by one are not.
 
 #include <QtTest>
+#include <atomic>
 
 #include "engine/body/body.h"
 #include "engine/pattern/flat_regions.h"
@@ -13,6 +14,7 @@
 #include "engine/quality/garment_metrics.h"
 #include "engine/quality/region_metrics.h"
 #include "engine/quality/verdict.h"
+#include "engine/recovery/recovery.h"
 #include "engine/seeding/scene.h"
 #include "engine/session/session.h"
 #include "support/test_paths.h"
@@ -64,6 +66,31 @@ class RegionArrangementTest : public QObject {
     const std::vector<bool> flat = stitches_sewn_flat(quilt);
     for (std::size_t s = 0; s < flat.size(); ++s)
       if (flat[s]) QCOMPARE(metrics.stitch_max_gap_m[s], 0.0);
+  }
+
+  // The recovery acts on the verdict the settings' judge gives: the first pass judged failing
+  // (a strain failure added to its pieces' verdict) gets attempts, and a clean one is kept.
+  void theRecoveryActsOnTheVerdictItIsGiven() {
+    const std::optional<RegionScene> regions = make_region_scene(quilted_shirt(), body_);
+    auto first_pass = std::make_shared<Session>(regions->scene);
+    first_pass->run();
+    const BodyReference reference(body_->mesh);
+    std::atomic<int> calls = 0;
+    RecoverySettings settings;
+    settings.attempts = 3;
+    settings.judge = [&](const Session& session, const GarmentMetrics&) {
+      QualityVerdict verdict =
+          judge_region_pieces(*regions->pieces, *session.scene().garment, regions->region_of_panel,
+                              session.positions(), &reference);
+      if (calls++ == 0)
+        verdict.failures.push_back({FailureKind::Strain, {0}, "judged failing", 1.0});
+      return verdict;
+    };
+    const RecoveryResult result = recover(first_pass, &reference, settings);
+    QVERIFY(!result.attempts.front().verdict.ok());
+    QVERIFY(result.attempts.size() >= 2);
+    QVERIFY(result.chosen > 0);
+    QVERIFY2(result.verdict.ok(), failures(result.verdict).c_str());
   }
 
   // The control: the session on the 69 pieces themselves.
