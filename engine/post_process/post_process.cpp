@@ -82,9 +82,8 @@ void untangle(ArrangementContext& context, const MeshEdges& mesh, const std::vec
   double untangled_energy = 0.0;
   bool cancelled = false;
   int pass = 0;
-  for (int round = 0;
-       round < parameters.post_process_untangle_rounds && !contacts.empty() && !cancelled;
-       ++round) {
+  // Each round starts with contacts: a round ends the loop when cancelled or still crossing.
+  for (int round = 0; round < parameters.post_process_untangle_rounds; ++round) {
     // The passes move the contacts' vertices and the few solver iterations barely move the rest:
     // between passes only the cloth near the round's first contacts is looked at again, and the
     // whole garment once at the end.
