@@ -7,6 +7,7 @@
 
 #include "engine/core/error.h"
 #include "engine/pattern/edge_curve.h"
+#include "engine/pattern/outfit.h"
 
 namespace garment {
 namespace {
@@ -42,26 +43,15 @@ int find_root(std::vector<int>& parent, int i) {
   return i;
 }
 
-std::vector<std::string> name_words(const std::string& name) {
-  std::vector<std::string> words;
-  std::size_t begin = 0;
-  while (begin <= name.size()) {
-    const std::size_t end = std::min(name.find('_', begin), name.size());
-    if (end > begin) words.push_back(name.substr(begin, end - begin));
-    begin = end + 1;
-  }
-  return words;
-}
-
 // The words of the first piece's name that every piece's name has, joined by '_'.
 std::string shared_name(const Pattern& pattern, const std::vector<int>& members) {
   std::string name;
-  for (const std::string& word : name_words(pattern.panels[members.front()].name)) {
+  for (const std::string_view word : panel_name_words(pattern.panels[members.front()].name)) {
     const bool everywhere = std::all_of(members.begin(), members.end(), [&](int member) {
-      const std::vector<std::string> words = name_words(pattern.panels[member].name);
+      const std::vector<std::string_view> words = panel_name_words(pattern.panels[member].name);
       return std::find(words.begin(), words.end(), word) != words.end();
     });
-    if (everywhere) name += (name.empty() ? "" : "_") + word;
+    if (everywhere) (name += name.empty() ? "" : "_") += word;
   }
   return name.empty() ? pattern.panels[members.front()].name : name;
 }

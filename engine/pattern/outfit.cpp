@@ -83,4 +83,16 @@ Pattern load_outfit_pattern(const std::vector<std::filesystem::path>& files,
   return merge_patterns(patterns, names, parts);
 }
 
+std::vector<std::string_view> panel_name_words(std::string_view name) {
+  name = panel_name_in_garment(name);
+  std::vector<std::string_view> words;
+  std::size_t start = 0;
+  while (start <= name.size()) {
+    const std::size_t end = std::min(name.find('_', start), name.size());
+    if (end > start) words.push_back(name.substr(start, end - start));
+    start = end + 1;
+  }
+  return words;
+}
+
 }  // namespace garment

@@ -26,6 +26,10 @@ std::string outfit_garment_name(const std::filesystem::path& pattern_file);
 // The panel's own name in a piece name GARMENT:PANEL (the whole name when it has no garment).
 std::string_view panel_name_in_garment(std::string_view piece_name);
 
+// The words of a panel's name (an outfit's piece: of its panel's), split at '_' (empty words
+// dropped): "sl_left_cuff_b" → sl, left, cuff, b.
+std::vector<std::string_view> panel_name_words(std::string_view name);
+
 // The garment's name in a piece name GARMENT:PANEL (empty when it has none).
 std::string_view outfit_garment_of(std::string_view piece_name);
 

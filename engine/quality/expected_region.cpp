@@ -2,21 +2,7 @@
 
 #include <regex>
 
-#include "engine/pattern/outfit.h"
-
 namespace garment {
-
-std::vector<std::string_view> panel_name_words(std::string_view name) {
-  name = panel_name_in_garment(name);  // an outfit's GARMENT:PANEL
-  std::vector<std::string_view> words;
-  std::size_t start = 0;
-  while (start <= name.size()) {
-    const std::size_t end = std::min(name.find('_', start), name.size());
-    if (end > start) words.push_back(name.substr(start, end - start));
-    start = end + 1;
-  }
-  return words;
-}
 
 namespace {
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/pattern/garment_mesh.h"
+#include "engine/pattern/outfit.h"
 
 namespace garment {
 
@@ -36,10 +37,6 @@ std::string describe(const ExpectedRegion& region);
 // "sleeve" (lfsleeve, rbsleeve). Anything else stays Any: skirt_panel_<N>, hoods' front/back,
 // godets' sides, collars' sides when unnamed. A name carrying both front and back words gets Any.
 ExpectedRegion expected_region_from_name(std::string_view name);
-
-// The words of a panel's name, split at '_' (empty words dropped): "sl_left_cuff_b" → sl, left,
-// cuff, b.
-std::vector<std::string_view> panel_name_words(std::string_view name);
 
 // One region per piece, from the pieces' names.
 std::vector<ExpectedRegion> expected_regions_from_names(const Garment& garment);

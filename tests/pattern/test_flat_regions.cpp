@@ -7,19 +7,11 @@
 #include "engine/pattern/flat_regions.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/outline.h"
-#include "engine/pattern/quilting.h"
-#include "support/test_paths.h"
+#include "support/quilted_shirt.h"
 
 using namespace garment;
 
 namespace {
-
-Pattern quilted(const Pattern& original, double cell) {
-  QuiltOptions options;
-  options.cell = cell;
-  return parse_pattern(quilt_pattern(original, options).specification,
-                       original.source + " (quilted)");
-}
 
 double area(const Panel& panel) {
   return std::abs(build_outline(panel).signed_area);
@@ -74,8 +66,8 @@ class FlatRegionsTest : public QObject {
   // The same shirt quilted: every cell of the two front halves makes one front, the back cells one
   // back, each with the area of its two halves, and the merged pattern meshes.
   void aQuiltMergesBackIntoItsFrontAndBack() {
-    const Pattern original = load_pattern(test::test_data("patterns/gc_0022_specification.json"));
-    const Pattern quilt = quilted(original, 0.1);
+    const Pattern original = load_pattern(test::test_data(test::kQuiltedShirtOriginal));
+    const Pattern quilt = test::quilted_shirt();
     QVERIFY(quilt.panels.size() > 20);
     const std::optional<RegionPattern> regions = merge_flat_regions(quilt);
     QVERIFY(regions);
@@ -110,8 +102,7 @@ class FlatRegionsTest : public QObject {
 
   // The regions are meshed as asked, but no finer than 20 mm (the arrangement's default).
   void theRegionsAreMeshedNoFinerThanTheDefault() {
-    const Pattern quilt =
-        quilted(load_pattern(test::test_data("patterns/gc_0022_specification.json")), 0.1);
+    const Pattern quilt = test::quilted_shirt();
     for (const auto& [asked, meshed] : {std::pair{0.01, 0.02}, std::pair{0.03, 0.03}}) {
       MeshingOptions options;
       options.target_edge_length = asked;

@@ -7,9 +7,8 @@
 
 #include "engine/pattern/flat_regions.h"
 #include "engine/pattern/garment_mesh.h"
-#include "engine/pattern/quilting.h"
 #include "engine/pattern/region_transfer.h"
-#include "support/test_paths.h"
+#include "support/quilted_shirt.h"
 
 using namespace garment;
 
@@ -22,11 +21,7 @@ struct Quilt {
 
 // gc_0022 (shirt front and back halves) quilted at 10 cm; pieces meshed at 20 mm, regions at 27.
 Quilt quilt() {
-  const Pattern original = load_pattern(test::test_data("patterns/gc_0022_specification.json"));
-  QuiltOptions options;
-  options.cell = 0.1;
-  const Pattern quilted =
-      parse_pattern(quilt_pattern(original, options).specification, "gc_0022 quilted");
+  const Pattern quilted = test::quilted_shirt();
   Quilt result{build_garment(quilted), {}, *merge_flat_regions(quilted)};
   MeshingOptions coarser;
   coarser.target_edge_length = 0.027;

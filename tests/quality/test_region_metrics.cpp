@@ -7,10 +7,9 @@
 
 #include "engine/body/body_mesh.h"
 #include "engine/pattern/flat_regions.h"
-#include "engine/pattern/quilting.h"
 #include "engine/quality/flat_placement.h"
 #include "engine/quality/region_metrics.h"
-#include "support/test_paths.h"
+#include "support/quilted_shirt.h"
 
 using namespace garment;
 
@@ -18,11 +17,7 @@ class RegionMetricsTest : public QObject {
   Q_OBJECT
  private slots:
   void eachPieceIsJudgedWhereItsRegionSits() {
-    const Pattern original = load_pattern(test::test_data("patterns/gc_0022_specification.json"));
-    QuiltOptions options;
-    options.cell = 0.1;
-    const Pattern quilt =
-        parse_pattern(quilt_pattern(original, options).specification, "gc_0022 quilted");
+    const Pattern quilt = test::quilted_shirt();
     const RegionPattern regions = *merge_flat_regions(quilt);
     const Garment pieces = build_garment(quilt);
     const Garment merged = build_garment(regions.pattern);

@@ -8,7 +8,6 @@
 
 #include "engine/body/body.h"
 #include "engine/pattern/flat_regions.h"
-#include "engine/pattern/quilting.h"
 #include "engine/pattern/region_transfer.h"
 #include "engine/quality/expected_region.h"
 #include "engine/quality/garment_metrics.h"
@@ -17,18 +16,11 @@
 #include "engine/recovery/recovery.h"
 #include "engine/seeding/scene.h"
 #include "engine/session/session.h"
-#include "support/test_paths.h"
+#include "support/quilted_shirt.h"
 
 using namespace garment;
 
 namespace {
-
-Pattern quilted_shirt() {
-  const Pattern original = load_pattern(test::test_data("patterns/gc_0022_specification.json"));
-  QuiltOptions options;
-  options.cell = 0.1;
-  return parse_pattern(quilt_pattern(original, options).specification, "gc_0022 quilted");
-}
 
 std::string failures(const QualityVerdict& verdict) {
   std::string text;
@@ -48,7 +40,7 @@ class RegionArrangementTest : public QObject {
   }
 
   void aQuiltArrangedAsItsRegionsIsClean() {
-    const Pattern quilt = quilted_shirt();
+    const Pattern quilt = test::quilted_shirt();
     const std::optional<RegionScene> regions = make_region_scene(quilt, body_);
     QVERIFY(regions);
     QCOMPARE(regions->pieces->pieces.size(), quilt.panels.size());
@@ -71,7 +63,7 @@ class RegionArrangementTest : public QObject {
   // The recovery acts on the verdict the settings' judge gives: the first pass judged failing
   // (a strain failure added to its pieces' verdict) gets attempts, and a clean one is kept.
   void theRecoveryActsOnTheVerdictItIsGiven() {
-    const std::optional<RegionScene> regions = make_region_scene(quilted_shirt(), body_);
+    const std::optional<RegionScene> regions = make_region_scene(test::quilted_shirt(), body_);
     auto first_pass = std::make_shared<Session>(regions->scene);
     first_pass->run();
     const BodyReference reference(body_->mesh);
@@ -95,7 +87,7 @@ class RegionArrangementTest : public QObject {
 
   // The control: the session on the 69 pieces themselves.
   void theSamePiecesArrangedOneByOneAreNot() {
-    auto pieces = std::make_shared<const Garment>(build_garment(quilted_shirt()));
+    auto pieces = std::make_shared<const Garment>(build_garment(test::quilted_shirt()));
     Session session(make_scene(pieces, body_));
     session.run();
     const BodyReference reference(body_->mesh);
