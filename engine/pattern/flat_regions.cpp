@@ -4,6 +4,7 @@
 #include <numeric>
 #include <set>
 #include <string>
+#include <utility>
 
 #include "engine/core/error.h"
 #include "engine/pattern/edge_curve.h"
@@ -90,6 +91,161 @@ std::vector<EdgeRef> outline_loop(const Pattern& pattern, const std::vector<int>
   return loop;
 }
 
+// Whether every point of `curve` lies on `a` or `b` and the middles of both on `curve`, within
+// the dense polylines' accuracy: `curve` is the two of them as one.
+bool is_union(const Panel& panel, const PanelEdge& curve, const PanelEdge& a, const PanelEdge& b) {
+  constexpr double kOnCurve = 2e-5;  // metres
+  const EdgeCurve joined(panel, curve), first(panel, a), second(panel, b);
+  auto near = [&](const Eigen::Vector2d& point, const EdgeCurve& on) {
+    const std::vector<Eigen::Vector2d>& line = on.dense_polyline();
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const Eigen::Vector2d d = line[i + 1] - line[i];
+      const double t =
+          std::clamp((point - line[i]).dot(d) / std::max(d.squaredNorm(), 1e-30), 0.0, 1.0);
+      if ((line[i] + t * d - point).norm() < kOnCurve) return true;
+    }
+    return false;
+  };
+  for (int k = 1; k < 16; ++k) {
+    const Eigen::Vector2d point = joined.point(k / 16.0);
+    if (!near(point, first) && !near(point, second)) return false;
+  }
+  return near(first.point(0.5), joined) && near(second.point(0.5), joined);
+}
+
+// Edges a (…→P) and b (P→…) of `panel` as one curve of their kind, when they are parts of one (a
+// straight line, an arc, a Bézier curve cut at P); nullopt otherwise.
+std::optional<PanelEdge> joined_edge(const Panel& panel, const PanelEdge& a, const PanelEdge& b) {
+  if (a.kind != b.kind || a.label != b.label) return std::nullopt;
+  PanelEdge joined = a;
+  joined.end = b.end;
+  const Eigen::Vector2d& split = panel.vertices[a.end];
+  std::vector<PanelEdge> candidates;
+  switch (a.kind) {
+    case CurveKind::Straight:
+      candidates.push_back(joined);
+      break;
+    case CurveKind::Circle:
+      if (std::abs(a.radius - b.radius) > kSamePoint || a.right != b.right) return std::nullopt;
+      for (bool large : {false, true}) {
+        joined.large_arc = large;
+        candidates.push_back(joined);
+      }
+      break;
+    case CurveKind::Quadratic:
+    case CurveKind::Cubic: {
+      // Cut at t, the control points next to P split the tangent there as t to 1 - t.
+      const Eigen::Vector2d& before = a.controls.back();
+      const Eigen::Vector2d& after = b.controls.front();
+      const double t = (split - before).norm() / ((split - before).norm() + (after - split).norm());
+      if (!(t > 0.0 && t < 1.0)) return std::nullopt;
+      const Eigen::Vector2d& start = panel.vertices[a.start];
+      const Eigen::Vector2d& end = panel.vertices[b.end];
+      if (a.kind == CurveKind::Quadratic) {
+        joined.controls = {start + (a.controls[0] - start) / t};
+      } else {
+        joined.controls = {start + (a.controls[0] - start) / t,
+                           end + (b.controls[1] - end) / (1.0 - t)};
+      }
+      candidates.push_back(joined);
+      break;
+    }
+  }
+  for (const PanelEdge& candidate : candidates)
+    if (is_union(panel, candidate, a, b)) return candidate;
+  return std::nullopt;
+}
+
+// Replaces edges `first` and the one after it of `panel` by `joined` (the vertex between them
+// goes); stitches on the panel are re-addressed, those on the edge after `first` to `joined`.
+void join_at(Pattern& pattern, int panel_index, int first, const PanelEdge& joined) {
+  Panel& panel = pattern.panels[panel_index];
+  const int count = static_cast<int>(panel.edges.size());
+  const int gone = (first + 1) % count;
+  panel.edges[first] = joined;
+  panel.edges.erase(panel.edges.begin() + gone);
+  panel.vertices.erase(panel.vertices.begin() + gone);
+  const int kept = first > gone ? first - 1 : first;
+  for (std::size_t e = 0; e < panel.edges.size(); ++e) {
+    panel.edges[e].start = static_cast<int>(e);
+    panel.edges[e].end = static_cast<int>((e + 1) % panel.edges.size());
+  }
+  auto readdress = [&](EdgeRef& ref) {
+    if (ref.panel != panel_index) return;
+    ref.edge = ref.edge == gone ? kept : ref.edge > gone ? ref.edge - 1 : ref.edge;
+  };
+  for (Stitch& stitch : pattern.stitches) {
+    readdress(stitch.a);
+    readdress(stitch.b);
+  }
+}
+
+// The stitch side on (panel, edge): (stitch index, true for side a); (-1, false) when free.
+std::pair<int, bool> stitch_on(const Pattern& pattern, int panel, int edge) {
+  for (std::size_t s = 0; s < pattern.stitches.size(); ++s) {
+    const Stitch& stitch = pattern.stitches[s];
+    if (stitch.a.panel == panel && stitch.a.edge == edge) return {static_cast<int>(s), true};
+    if (stitch.b.panel == panel && stitch.b.edge == edge) return {static_cast<int>(s), false};
+  }
+  return {-1, false};
+}
+
+// Where a cut met a merged panel's outline, its two sides are joined back into the edge the
+// quilting cut, when they are parts of one curve and either both free or both sewn to the two
+// parts of one edge elsewhere (joined there too, the two stitches becoming one): a region is then
+// the panel it was cut from, and meshes as it does.
+void join_cut_edges(Pattern& pattern, const std::vector<std::vector<Eigen::Vector2d>>& cut_ends) {
+  for (bool joined = true; joined;) {
+    joined = false;
+    for (std::size_t p = 0; p < pattern.panels.size() && !joined; ++p) {
+      const int panel = static_cast<int>(p);
+      for (const Eigen::Vector2d& end : cut_ends[p]) {
+        const Panel& outline = pattern.panels[p];
+        const int count = static_cast<int>(outline.edges.size());
+        int at = -1;  // the vertex
+        for (int v = 0; v < count && at < 0; ++v)
+          if (same_point(outline.vertices[v], end)) at = v;
+        if (at < 0 || count < 3) continue;
+        const int first = (at + count - 1) % count;
+        const std::optional<PanelEdge> whole =
+            joined_edge(outline, outline.edges[first], outline.edges[at]);
+        if (!whole) continue;
+        const auto [stitch_a, side_a] = stitch_on(pattern, panel, first);
+        const auto [stitch_b, side_b] = stitch_on(pattern, panel, at);
+        if (stitch_a < 0 && stitch_b < 0) {
+          join_at(pattern, panel, first, *whole);
+          joined = true;
+          break;
+        }
+        if (stitch_a < 0 || stitch_b < 0 || stitch_a == stitch_b) continue;
+        const Stitch& sa = pattern.stitches[stitch_a];
+        const Stitch& sb = pattern.stitches[stitch_b];
+        const EdgeRef other_a = side_a ? sa.b : sa.a;
+        const EdgeRef other_b = side_b ? sb.b : sb.a;
+        if (sa.right_wrong != sb.right_wrong || other_a.panel != other_b.panel ||
+            other_a.panel == panel)
+          continue;
+        // The other side runs the other way (a stitch pairs a.start with b.end) unless right_wrong.
+        const Panel& partner = pattern.panels[other_a.panel];
+        const int partner_count = static_cast<int>(partner.edges.size());
+        const int partner_first = sa.right_wrong ? other_a.edge : other_b.edge;
+        const int partner_second = sa.right_wrong ? other_b.edge : other_a.edge;
+        if ((partner_first + 1) % partner_count != partner_second || partner_count < 3) continue;
+        const std::optional<PanelEdge> partner_whole =
+            joined_edge(partner, partner.edges[partner_first], partner.edges[partner_second]);
+        if (!partner_whole) continue;
+        // One stitch for both parts: the first one's, the second one dropped.
+        const int partner_panel = other_a.panel;
+        pattern.stitches.erase(pattern.stitches.begin() + stitch_b);
+        join_at(pattern, panel, first, *whole);
+        join_at(pattern, partner_panel, partner_first, *partner_whole);
+        joined = true;
+        break;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<bool> stitches_sewn_flat(const Pattern& pattern) {
@@ -135,6 +291,8 @@ std::optional<RegionPattern> merge_flat_regions(const Pattern& pattern) {
   std::vector<std::vector<EdgeRef>> edge_to(panels);
   std::set<std::string> names;
   std::vector<bool> merged_panel;  // per output panel: a region merged into one
+  // Per output panel: where the cuts met its outline (the ends of the edges sewn flat).
+  std::vector<std::vector<Eigen::Vector2d>> cut_ends;
   bool any_merged = false;
   auto add_panel = [&](Panel panel, const std::vector<int>& members) {
     std::string name = panel.name;
@@ -177,8 +335,17 @@ std::optional<RegionPattern> merge_flat_regions(const Pattern& pattern) {
       edge.end = (i + 1) % count;
       merged.edges.push_back(std::move(edge));
     }
-    for (int member : members)
+    std::vector<Eigen::Vector2d> ends;
+    for (int member : members) {
       edge_to[member].assign(pattern.panels[member].edges.size(), EdgeRef{index, -1});
+      const Panel& piece = pattern.panels[member];
+      for (std::size_t e = 0; e < piece.edges.size(); ++e)
+        if (flat_edges.count({member, static_cast<int>(e)}))
+          ends.insert(ends.end(),
+                      {piece.vertices[piece.edges[e].start], piece.vertices[piece.edges[e].end]});
+    }
+    cut_ends.resize(index + 1);
+    cut_ends[index] = std::move(ends);
     for (int i = 0; i < count; ++i)
       edge_to[loop[i].panel][loop[i].edge].edge = i;
     add_panel(std::move(merged), members);
@@ -191,6 +358,8 @@ std::optional<RegionPattern> merge_flat_regions(const Pattern& pattern) {
     result.pattern.stitches.push_back(stitch);
   }
   if (!any_merged) return std::nullopt;
+  cut_ends.resize(result.pattern.panels.size());
+  join_cut_edges(result.pattern, cut_ends);
   return result;
 }
 

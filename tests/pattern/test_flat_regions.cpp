@@ -4,6 +4,9 @@
 
 #include <QtTest>
 
+#include <set>
+
+#include "engine/pattern/edge_curve.h"
 #include "engine/pattern/flat_regions.h"
 #include "engine/pattern/garment_mesh.h"
 #include "engine/pattern/outline.h"
@@ -12,6 +15,18 @@
 using namespace garment;
 
 namespace {
+
+double distance_to_polyline(const Eigen::Vector2d& point,
+                            const std::vector<Eigen::Vector2d>& polyline) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
+    const Eigen::Vector2d d = polyline[i + 1] - polyline[i];
+    const double t =
+        std::clamp((point - polyline[i]).dot(d) / std::max(d.squaredNorm(), 1e-30), 0.0, 1.0);
+    best = std::min(best, (polyline[i] + t * d - point).norm());
+  }
+  return best;
+}
 
 double area(const Panel& panel) {
   return std::abs(build_outline(panel).signed_area);
@@ -98,6 +113,48 @@ class FlatRegionsTest : public QObject {
       QVERIFY(stitch.a.panel != stitch.b.panel);
     const Garment garment = build_garment(regions->pattern);
     QCOMPARE(garment.pieces.size(), std::size_t(2));
+  }
+
+  // Where the cuts met the outline, the edges they cut are whole again: every edge of the shirt's
+  // halves (the centre seams aside) lies along one edge of its region, start, middle and end.
+  void theEdgesTheCutsSplitAreWholeAgain() {
+    const Pattern original = load_pattern(test::test_data(test::kQuiltedShirtOriginal));
+    const RegionPattern regions = *merge_flat_regions(test::quilted_shirt());
+    const std::vector<bool> flat = stitches_sewn_flat(original);
+    std::set<std::pair<int, int>> centre;
+    for (std::size_t s = 0; s < flat.size(); ++s)
+      if (flat[s]) {
+        centre.insert({original.stitches[s].a.panel, original.stitches[s].a.edge});
+        centre.insert({original.stitches[s].b.panel, original.stitches[s].b.edge});
+      }
+    int edges = 0;
+    for (std::size_t p = 0; p < original.panels.size(); ++p) {
+      const Panel& panel = original.panels[p];
+      const bool front = panel.name.find("ftorso") != std::string::npos;
+      const Panel& region =
+          regions.pattern.panels[regions.pattern.panel_index(front ? "ftorso" : "btorso")];
+      for (std::size_t e = 0; e < panel.edges.size(); ++e) {
+        if (centre.count({static_cast<int>(p), static_cast<int>(e)})) continue;
+        ++edges;
+        const EdgeCurve curve(panel, panel.edges[e]);
+        const bool covered =
+            std::any_of(region.edges.begin(), region.edges.end(), [&](const PanelEdge& edge) {
+              const EdgeCurve along_region(region, edge);
+              const std::vector<Eigen::Vector2d>& line = along_region.dense_polyline();
+              const double along[] = {0.0, 0.5, 1.0};
+              return std::all_of(std::begin(along), std::end(along), [&](double u) {
+                return distance_to_polyline(curve.point(u), line) < 1e-4;
+              });
+            });
+        QVERIFY2(covered,
+                 qPrintable(QString("%1 edge %2").arg(QString::fromStdString(panel.name)).arg(e)));
+      }
+    }
+    int region_edges = 0;
+    for (const Panel& region : regions.pattern.panels)
+      region_edges += static_cast<int>(region.edges.size());
+    QVERIFY2(region_edges <= edges,
+             qPrintable(QString("%1 against %2").arg(region_edges).arg(edges)));
   }
 
   // The regions are meshed as asked, but no finer than 20 mm (the arrangement's default).
