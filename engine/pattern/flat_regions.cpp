@@ -94,8 +94,8 @@ std::vector<EdgeRef> outline_loop(const Pattern& pattern, const std::vector<int>
 // Whether every point of `curve` lies on `a` or `b` and the middles of both on `curve`, within
 // the dense polylines' accuracy: `curve` is the two of them as one.
 bool is_union(const Panel& panel, const PanelEdge& curve, const PanelEdge& a, const PanelEdge& b) {
-  constexpr double kOnCurve =
-      2e-4;  // metres: the dense polylines follow curves to a fraction of a mm
+  // Metres: the dense polylines follow the curves to a fraction of a millimetre.
+  constexpr double kOnCurve = 2e-4;
   const EdgeCurve joined(panel, curve), first(panel, a), second(panel, b);
   auto near = [&](const Eigen::Vector2d& point, const EdgeCurve& on) {
     const std::vector<Eigen::Vector2d>& line = on.dense_polyline();

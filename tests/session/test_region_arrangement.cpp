@@ -3,6 +3,10 @@
 // (front and back), then placed and judged as its 69 pieces, it is clean, every cut closed; the
 // same pieces arranged one by one are not.
 
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QTemporaryDir>
 #include <QtTest>
 #include <atomic>
 
@@ -16,6 +20,7 @@
 #include "engine/recovery/recovery.h"
 #include "engine/seeding/scene.h"
 #include "engine/session/session.h"
+#include "support/garment_init_process.h"
 #include "support/quilted_shirt.h"
 
 using namespace garment;
@@ -83,6 +88,32 @@ class RegionArrangementTest : public QObject {
     QVERIFY(result.attempts.size() >= 2);
     QVERIFY(result.chosen > 0);
     QVERIFY2(result.verdict.ok(), failures(result.verdict).c_str());
+  }
+
+  // The command line: `quilt`, then `run` arranges the quilt as its regions and writes its 69
+  // pieces, and `check` judges that OBJ as `run` did.
+  void theCommandLineWritesAndChecksTheQuilt() {
+    QTemporaryDir folder;
+    const QString quilt = folder.filePath("shirt_specification.json");
+    const QString body =
+        QString::fromStdString(test::test_data("bodies/f_smpl_average_A40.obj").string());
+    test::ProcessResult run = test::garment_init(
+        {"quilt", QString::fromStdString(test::test_data(test::kQuiltedShirtOriginal).string()),
+         "--cell", "10", "-o", quilt});
+    QCOMPARE(run.exit_code, 0);
+    const QString obj = folder.filePath("shirt.obj"), report = folder.filePath("shirt.json");
+    run = test::garment_init({"run", quilt, "--body", body, "-o", obj, "--report", report});
+    QVERIFY2(run.exit_code == 0, qPrintable(run.out + run.err));
+    QVERIFY2(run.out.contains("69 pieces sewn flat into 2 regions"), qPrintable(run.out));
+    const QJsonObject json = QJsonDocument::fromJson(QByteArray::fromStdString(
+                                                         test::file_contents(report.toStdString())))
+                                 .object();
+    QCOMPARE(json["pieces"].toInt(), 69);
+    QCOMPARE(json["regions"].toArray().size(), 2);
+    QCOMPARE(json["quality"].toObject()["ok"].toBool(), true);
+    run = test::garment_init({"check", obj, "--pattern", quilt, "--body", body});
+    QVERIFY2(run.exit_code == 0, qPrintable(run.out + run.err));
+    QVERIFY(run.out.contains("misplaced              0"));
   }
 
   // The control: the session on the 69 pieces themselves.
