@@ -1,6 +1,9 @@
 #include "engine/pattern/edge_curve.h"
 
 #include <algorithm>
+#include <limits>
+
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -120,6 +123,17 @@ std::vector<Eigen::Vector2d> EdgeCurve::sample_by_arc_length(int count) const {
   samples.front() = start_;
   samples.back() = end_;
   return samples;
+}
+
+double EdgeCurve::distance_to(const Eigen::Vector2d& point) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < dense_.size(); ++i) {
+    const Eigen::Vector2d d = dense_[i + 1] - dense_[i];
+    const double t =
+        std::clamp((point - dense_[i]).dot(d) / std::max(d.squaredNorm(), 1e-30), 0.0, 1.0);
+    best = std::min(best, (dense_[i] + t * d - point).norm());
+  }
+  return best;
 }
 
 }  // namespace garment

@@ -22,6 +22,8 @@ class EdgeCurve {
   std::vector<Eigen::Vector2d> sample_by_arc_length(int count) const;
   // A polyline following the curve to within a fraction of a millimetre (start and end included).
   const std::vector<Eigen::Vector2d>& dense_polyline() const { return dense_; }
+  // Distance from `point` to the curve, measured to its dense polyline.
+  double distance_to(const Eigen::Vector2d& point) const;
 
  private:
   double parameter_at_length(double length) const;

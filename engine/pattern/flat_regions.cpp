@@ -98,14 +98,7 @@ bool is_union(const Panel& panel, const PanelEdge& curve, const PanelEdge& a, co
   constexpr double kOnCurve = 2e-4;
   const EdgeCurve joined(panel, curve), first(panel, a), second(panel, b);
   auto near = [&](const Eigen::Vector2d& point, const EdgeCurve& on) {
-    const std::vector<Eigen::Vector2d>& line = on.dense_polyline();
-    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-      const Eigen::Vector2d d = line[i + 1] - line[i];
-      const double t =
-          std::clamp((point - line[i]).dot(d) / std::max(d.squaredNorm(), 1e-30), 0.0, 1.0);
-      if ((line[i] + t * d - point).norm() < kOnCurve) return true;
-    }
-    return false;
+    return on.distance_to(point) < kOnCurve;
   };
   for (int k = 1; k < 16; ++k) {
     const Eigen::Vector2d point = joined.point(k / 16.0);

@@ -16,18 +16,6 @@ using namespace garment;
 
 namespace {
 
-double distance_to_polyline(const Eigen::Vector2d& point,
-                            const std::vector<Eigen::Vector2d>& polyline) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
-    const Eigen::Vector2d d = polyline[i + 1] - polyline[i];
-    const double t =
-        std::clamp((point - polyline[i]).dot(d) / std::max(d.squaredNorm(), 1e-30), 0.0, 1.0);
-    best = std::min(best, (polyline[i] + t * d - point).norm());
-  }
-  return best;
-}
-
 double area(const Panel& panel) {
   return std::abs(build_outline(panel).signed_area);
 }
@@ -140,10 +128,9 @@ class FlatRegionsTest : public QObject {
         const bool covered =
             std::any_of(region.edges.begin(), region.edges.end(), [&](const PanelEdge& edge) {
               const EdgeCurve along_region(region, edge);
-              const std::vector<Eigen::Vector2d>& line = along_region.dense_polyline();
               const double along[] = {0.0, 0.5, 1.0};
               return std::all_of(std::begin(along), std::end(along), [&](double u) {
-                return distance_to_polyline(curve.point(u), line) < 1e-4;
+                return along_region.distance_to(curve.point(u)) < 1e-4;
               });
             });
         QVERIFY2(covered,

@@ -35,18 +35,6 @@ double edge_length(const Pattern& pattern, const EdgeRef& ref) {
   return EdgeCurve(panel, panel.edges[ref.edge]).length();
 }
 
-double distance_to_polyline(const Eigen::Vector2d& point,
-                            const std::vector<Eigen::Vector2d>& polyline) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
-    const Eigen::Vector2d d = polyline[i + 1] - polyline[i];
-    const double t =
-        std::clamp((point - polyline[i]).dot(d) / std::max(d.squaredNorm(), 1e-30), 0.0, 1.0);
-    best = std::min(best, (polyline[i] + t * d - point).norm());
-  }
-  return best;
-}
-
 // The edge of the original pattern that an output edge lies on (its midpoint within 0.2 mm of it,
 // the panels in one frame), or edge -1 when it lies inside the panel (a cut).
 EdgeRef locate(const Pattern& original, const Pattern& output, const EdgeRef& ref) {
@@ -55,7 +43,7 @@ EdgeRef locate(const Pattern& original, const Pattern& output, const EdgeRef& re
   const Eigen::Vector2d middle = EdgeCurve(piece, piece.edges[ref.edge]).point(0.5);
   const Panel& panel = original.panels[p];
   for (std::size_t e = 0; e < panel.edges.size(); ++e)
-    if (distance_to_polyline(middle, EdgeCurve(panel, panel.edges[e]).dense_polyline()) < 2e-4)
+    if (EdgeCurve(panel, panel.edges[e]).distance_to(middle) < 2e-4)
       return {p, static_cast<int>(e)};
   return {p, -1};
 }
