@@ -400,18 +400,24 @@ std::vector<std::string> MainWindow::namesOf(const std::vector<OutfitLayer>& lay
 
 bool MainWindow::showOutfit(std::vector<OutfitLayer> layers, const QString& error_title) {
   std::shared_ptr<const Garment> garment;
+  std::optional<RegionGarments> quilt;
   const std::vector<std::string> names = namesOf(layers);
   try {
     BusyCursor busy;
-    // One pattern keeps its panels' own names; an outfit's are GARMENT:PANEL.
+    // One pattern keeps its panels' own names; an outfit's are GARMENT:PANEL. A quilt is shown and
+    // arranged as its regions, as `garment-init run` arranges it.
     const std::vector<Pattern> patterns = patternsOf(layers);
-    garment = std::make_shared<const Garment>(
-        build_garment(patterns.size() == 1 ? patterns.front() : merge_patterns(patterns, names)));
+    if (patterns.size() == 1) quilt = mesh_region_garments(patterns.front());
+    garment = quilt
+                  ? quilt->region_garment
+                  : std::make_shared<const Garment>(build_garment(
+                        patterns.size() == 1 ? patterns.front() : merge_patterns(patterns, names)));
   } catch (const std::exception& error) {
     presentError(error_title, QString::fromStdString(error.what()));
     return false;
   }
   garment_ = garment;
+  quilt_ = std::move(quilt);
   layers_ = std::move(layers);
   pattern_view_->setGarment(garment_);
   avatar_view_->setGarment(garment_);
@@ -460,6 +466,11 @@ void MainWindow::updateTitle() {
   for (const OutfitLayer& layer : layers_)
     patterns << QFileInfo(layer.path).fileName();
   if (!patterns.isEmpty()) parts << patterns.join(tr(" + "));
+  // A quilt says what the views show: its regions, not its pieces.
+  if (quilt_)
+    parts.back() += tr(" (%1 pieces sewn flat into %2 regions)")
+                        .arg(quilt_->pieces->pieces.size())
+                        .arg(quilt_->region_garment->pieces.size());
   if (!body_path_.isEmpty()) parts << QFileInfo(body_path_).fileName();
   setWindowTitle(parts.isEmpty() ? tr("garment-studio")
                                  : tr("%1 — garment-studio").arg(parts.join(tr(" on "))));

@@ -23,6 +23,7 @@
 #include "engine/pattern/pattern.h"
 #include "engine/quality/verdict.h"
 #include "engine/recovery/cannot_fit.h"
+#include "engine/seeding/scene.h"
 #include "ui/arrangement_status_bar.h"
 #include "ui/avatar_view_actions.h"
 #include "ui/body_location_marker.h"
@@ -97,6 +98,10 @@ class MainWindow : public QMainWindow {
   QToolBar* mainToolBar() const { return toolbar_; }
 
   std::shared_ptr<const Garment> garment() const { return garment_; }
+  // A quilt's regions and pieces (seeding/scene.h), when the one pattern open is a quilt: garment()
+  // is then its regions, the units the arrangement moves and the views show; the pieces are what
+  // exports write and the verdict judges.
+  const std::optional<RegionGarments>& quiltRegions() const { return quilt_; }
   // The body with its signed distance field and 15 locations.
   std::shared_ptr<const Body> body() const { return body_; }
 
@@ -199,6 +204,7 @@ class MainWindow : public QMainWindow {
   ErrorPresenter error_presenter_;
 
   std::shared_ptr<const Garment> garment_;
+  std::optional<RegionGarments> quilt_;
   std::shared_ptr<const Body> body_;
   std::vector<OutfitLayer> layers_;  // innermost first
   QString body_path_;

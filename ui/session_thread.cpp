@@ -9,7 +9,9 @@
 #include "engine/io/glb_export.h"
 #include "engine/io/session_report.h"
 #include "engine/io/sewn_export.h"
+#include "engine/pattern/region_transfer.h"
 #include "engine/quality/garment_metrics.h"
+#include "engine/quality/region_metrics.h"
 #include "engine/quality/verdict.h"
 
 namespace garment::ui {
@@ -142,13 +144,15 @@ void SessionThread::emptyOutbox() {
 void SessionThread::openScene(std::shared_ptr<const Garment> garment,
                               std::shared_ptr<const Body> body, SessionOptions options,
                               std::vector<Pattern> outfit_patterns,
-                              std::vector<std::string> outfit_names) {
+                              std::vector<std::string> outfit_names,
+                              std::optional<RegionGarments> quilt) {
   Command command(Command::Open);
   command.garment = std::move(garment);
   command.body = std::move(body);
   command.options = std::move(options);
   command.outfit_patterns = std::move(outfit_patterns);
   command.outfit_names = std::move(outfit_names);
+  command.quilt = std::move(quilt);
   post(std::move(command), true);
 }
 
@@ -335,10 +339,16 @@ void SessionThread::execute(const Command& command) {
         checker_.reset();
         body_reference_.reset();
         scene_.reset();
-        scene_ = command.outfit_patterns.size() > 1
-                     ? make_outfit_scene(command.garment, command.outfit_patterns,
-                                         command.outfit_names, command.body)
-                     : make_scene(command.garment, command.body);
+        quilt_.reset();
+        if (command.quilt) {
+          quilt_ = make_region_scene(*command.quilt, command.body);
+          scene_ = quilt_->scene;
+        } else {
+          scene_ = command.outfit_patterns.size() > 1
+                       ? make_outfit_scene(command.garment, command.outfit_patterns,
+                                           command.outfit_names, command.body)
+                       : make_scene(command.garment, command.body);
+        }
         session_ = std::make_shared<Session>(scene_, options_);
         phases_completed_ = 0;
         last_iterations_ = 0;
@@ -439,18 +449,25 @@ void SessionThread::exportFile(ExportKind kind, const QString& path) {
   try {
     const Scene& scene = session_->scene();
     const std::filesystem::path file = path.toStdString();
+    const Garment& garment = writtenGarment();
+    const Eigen::MatrixX3d positions = writtenPositions();
     switch (kind) {
       case ExportKind::Obj:
-        write_garment_obj(file, *scene.garment, session_->positions());
+        write_garment_obj(file, garment, positions);
         break;
       case ExportKind::Glb:
-        write_glb(file,
-                  garment_glb_meshes(*scene.garment, session_->positions(), scene.body.get()));
+        write_glb(file, garment_glb_meshes(garment, positions, scene.body.get()));
         break;
       case ExportKind::Report: {
-        const GarmentMetrics metrics = checker().measure(session_->positions());
-        const QualityVerdict verdict = judge_garment(*scene.garment, metrics);
-        write_file_atomically(file, session_report_json(*session_, metrics, verdict) + "\n");
+        const GarmentChecker& session_checker = checker();  // builds body_reference_ too
+        const GarmentMetrics metrics =
+            quilt_ ? measure_region_pieces(garment, positions, body_reference_.get(),
+                                           *scene.garment, quilt_->region_of_panel)
+                   : session_checker.measure(session_->positions());
+        const QualityVerdict verdict = judge_garment(garment, metrics);
+        write_file_atomically(file, session_report_json(*session_, metrics, verdict, nullptr,
+                                                        quilt_ ? &*quilt_ : nullptr) +
+                                        "\n");
         break;
       }
       case ExportKind::SewnObj:
@@ -459,8 +476,8 @@ void SessionThread::exportFile(ExportKind kind, const QString& path) {
         const SewnExport sewn = kind == ExportKind::SewnObj   ? SewnExport::kSewnObj
                                 : kind == ExportKind::SewnGlb ? SewnExport::kSewnGlb
                                                               : SewnExport::kSewingObj;
-        write_file_atomically(file, format_sewn_export(sewn, *scene.garment, session_->positions(),
-                                                       scene.body.get(), file));
+        write_file_atomically(file,
+                              format_sewn_export(sewn, garment, positions, scene.body.get(), file));
         break;
       }
     }
@@ -490,8 +507,13 @@ void SessionThread::fix() {
   fixing_ = true;
   publishState();
   // On every core, as `garment-init run` recovers: the same attempts, the same garment chosen.
-  const RecoverySettings settings;
+  RecoverySettings settings;
   checker();  // builds body_reference_
+  if (quilt_)
+    settings.judge = [this](const Session& attempt, const GarmentMetrics&) {
+      return judge_region_pieces(*quilt_->pieces, *attempt.scene().garment, quilt_->region_of_panel,
+                                 attempt.positions(), body_reference_.get());
+    };
   FixObserver observer(*this);
   try {
     const RecoveryResult result = recover(session_, body_reference_.get(), settings, &observer);
@@ -553,6 +575,22 @@ const GarmentChecker& SessionThread::checker() {
   return *checker_;
 }
 
+const Garment& SessionThread::writtenGarment() const {
+  return quilt_ ? *quilt_->pieces : *session_->scene().garment;
+}
+
+Eigen::MatrixX3d SessionThread::writtenPositions() const {
+  if (!quilt_) return session_->positions();
+  return transfer_region_positions(*quilt_->pieces, *session_->scene().garment,
+                                   quilt_->region_of_panel, session_->positions());
+}
+
+QualityVerdict SessionThread::judge(const GarmentMetrics& metrics) const {
+  if (!quilt_) return judge_garment(*scene_->garment, metrics);
+  return judge_region_pieces(*quilt_->pieces, *scene_->garment, quilt_->region_of_panel,
+                             session_->positions(), body_reference_.get());
+}
+
 void SessionThread::publishUpdate(bool paced) {
   update_held_ = false;
   const SessionSnapshot snapshot = session_->snapshot();
@@ -600,7 +638,7 @@ void SessionThread::publishState() {
   } else if (!verdict_ || (outfit && !between_garments_)) {
     const GarmentMetrics metrics = checker().measure(session_->positions());
     if (!verdict_) {
-      verdict_ = judge_garment(*scene_->garment, metrics);
+      verdict_ = judge(metrics);
       if (verdict_->failed(FailureKind::Strain))
         cannot_fit_ = find_cannot_fit(*scene_->garment, metrics, *scene_->body,
                                       QualityThresholds{}.max_strain);

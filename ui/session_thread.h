@@ -38,6 +38,7 @@
 #include "engine/quality/outfit_crossings.h"
 #include "engine/quality/verdict.h"
 #include "engine/recovery/recovery.h"
+#include "engine/seeding/scene.h"
 #include "engine/session/session.h"
 
 namespace garment::ui {
@@ -108,10 +109,14 @@ class SessionThread : public QThread {
 
   // A new session on this garment and body (the scene is built on the worker). Options apply to
   // this and later sessions. An outfit (more than one pattern, innermost first, with their
-  // garments' names) makes an outfit scene; `garment` is then their merge (scene.h).
+  // garments' names) makes an outfit scene; `garment` is then their merge (scene.h). A quilt
+  // (`quilt`, whose region_garment is `garment`) is arranged as its regions, and its pieces are
+  // what the verdict judges, the exports write and a fix's attempts are judged by, as
+  // `garment-init run` does.
   void openScene(std::shared_ptr<const Garment> garment, std::shared_ptr<const Body> body,
                  SessionOptions options = {}, std::vector<Pattern> outfit_patterns = {},
-                 std::vector<std::string> outfit_names = {});
+                 std::vector<std::string> outfit_names = {},
+                 std::optional<RegionGarments> quilt = std::nullopt);
   void runSession();
   void pauseSession();
   void stepSession();
@@ -187,6 +192,7 @@ class SessionThread : public QThread {
     SessionOptions options;
     std::vector<Pattern> outfit_patterns;
     std::vector<std::string> outfit_names;
+    std::optional<RegionGarments> quilt;
     std::optional<SeedPlan> seed;
     std::vector<int> order;
     bool run_after = false;
@@ -215,6 +221,12 @@ class SessionThread : public QThread {
   void showAttempt(int index);  // worker thread: makes attempt `index` the session
   void forgetAttempts();        // the session changed: the last fix's attempts no longer apply
   const GarmentChecker& checker();
+  // The garment as written and judged, and its positions: a quilt's pieces placed from the
+  // session's regions, else the session's own.
+  const Garment& writtenGarment() const;
+  Eigen::MatrixX3d writtenPositions() const;
+  // The verdict on the session's garment (a quilt's: on its pieces) from the session's metrics.
+  QualityVerdict judge(const GarmentMetrics& metrics) const;
   QString checkpointLabel(Phase ran) const;
   // Labels the checkpoints a command added without running a phase (a reseed's new start).
   void labelNewStarts();
@@ -242,6 +254,7 @@ class SessionThread : public QThread {
   // Worker thread only.
   bool update_held_ = false;  // a paced update and state between phases not sent (not due)
   std::shared_ptr<const Scene> scene_;
+  std::optional<RegionScene> quilt_;  // a quilt's regions (their scene is the first pass's)
   std::shared_ptr<Session> session_;  // shared with the last fix's attempts
   // The scene's quality checker, built when the first verdict or report needs it and kept with the
   // scene (it reads the scene's garment and body_reference_, declared before it so that it goes

@@ -177,7 +177,7 @@ void StudioController::openSession() {
   shown_scene_.reset();
   undo_.clear();  // the edits were of the session replaced
   thread_->openScene(window_->garment(), window_->body(), options_, window_->outfitPatterns(),
-                     window_->outfitNames());
+                     window_->outfitNames(), window_->quiltRegions());
   if (run_when_opened_) {
     thread_->runSession();
     run_when_opened_ = false;

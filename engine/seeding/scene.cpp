@@ -64,18 +64,32 @@ std::shared_ptr<const Scene> load_scene(const std::filesystem::path& pattern,
   return make_scene(std::move(garment), std::move(loaded), options);
 }
 
-std::optional<RegionScene> make_region_scene(const Pattern& pattern,
-                                             std::shared_ptr<const Body> body,
-                                             const SceneOptions& options) {
-  std::optional<MeshedRegions> regions = mesh_flat_regions(pattern, options.meshing);
+std::optional<RegionGarments> mesh_region_garments(const Pattern& pattern,
+                                                   const MeshingOptions& options) {
+  std::optional<MeshedRegions> regions = mesh_flat_regions(pattern, options);
   if (!regions) return std::nullopt;
-  RegionScene result;
-  result.pieces = std::make_shared<const Garment>(build_garment(pattern, options.meshing));
-  result.scene = make_scene(std::make_shared<const Garment>(std::move(regions->garment)),
-                            std::move(body), options);
+  RegionGarments result;
+  result.region_garment = std::make_shared<const Garment>(std::move(regions->garment));
+  result.pieces = std::make_shared<const Garment>(build_garment(pattern, options));
   result.region_of_panel = std::move(regions->region_of_panel);
   result.pieces_of_region = std::move(regions->pieces_of_region);
   return result;
+}
+
+RegionScene make_region_scene(RegionGarments garments, std::shared_ptr<const Body> body,
+                              const SceneOptions& options) {
+  RegionScene result;
+  static_cast<RegionGarments&>(result) = std::move(garments);
+  result.scene = make_scene(result.region_garment, std::move(body), options);
+  return result;
+}
+
+std::optional<RegionScene> make_region_scene(const Pattern& pattern,
+                                             std::shared_ptr<const Body> body,
+                                             const SceneOptions& options) {
+  std::optional<RegionGarments> garments = mesh_region_garments(pattern, options.meshing);
+  if (!garments) return std::nullopt;
+  return make_region_scene(std::move(*garments), std::move(body), options);
 }
 
 std::vector<int> outfit_piece_garments(const Scene& scene) {

@@ -82,17 +82,28 @@ std::shared_ptr<const Scene> make_scene(std::shared_ptr<const Garment> garment,
                                         const SceneOptions& options = {});
 
 // A pattern whose pieces are sewn flat into regions of more than two (a quilt,
-// pattern/flat_regions.h) is arranged as its regions: `scene` has one piece per region, since the
-// classifier, the seed and the start shapes know panels, not the cells of a quilt; `pieces` is
-// the pattern's own garment, which pattern/region_transfer.h places from the scene's arrangement.
-// The regions are meshed no finer than 20 mm (mesh_flat_regions); the pieces as `options` say.
-struct RegionScene {
-  std::shared_ptr<const Scene> scene;
-  std::shared_ptr<const Garment> pieces;
-  std::vector<int> region_of_panel;   // #pieces: the scene's piece each one is part of
-  std::vector<int> pieces_of_region;  // #scene pieces: how many pieces each one holds
+// pattern/flat_regions.h) is arranged as its regions: one piece per region, since the classifier,
+// the seed and the start shapes know panels, not the cells of a quilt; `pieces` is the pattern's
+// own garment, which pattern/region_transfer.h places from the regions' arrangement. The regions
+// are meshed no finer than 20 mm (mesh_flat_regions); the pieces as the options say.
+struct RegionGarments {
+  std::shared_ptr<const Garment> region_garment;  // arranged
+  std::shared_ptr<const Garment> pieces;          // written and judged
+  std::vector<int> region_of_panel;               // #pieces: the region each one is part of
+  std::vector<int> pieces_of_region;              // #regions: how many pieces each one holds
 };
 // nullopt when the pattern has no such region (mesh_flat_regions): it is arranged as it is.
+std::optional<RegionGarments> mesh_region_garments(const Pattern& pattern,
+                                                   const MeshingOptions& options = {});
+
+// The scene of a quilt's regions (the studio builds it on its worker from the garments the
+// window meshed).
+struct RegionScene : RegionGarments {
+  std::shared_ptr<const Scene> scene;  // on region_garment
+};
+RegionScene make_region_scene(RegionGarments garments, std::shared_ptr<const Body> body,
+                              const SceneOptions& options = {});
+// mesh_region_garments, then its scene.
 std::optional<RegionScene> make_region_scene(const Pattern& pattern,
                                              std::shared_ptr<const Body> body,
                                              const SceneOptions& options = {});
