@@ -420,6 +420,7 @@ bool MainWindow::showOutfit(std::vector<OutfitLayer> layers, const QString& erro
   quilt_ = std::move(quilt);
   layers_ = std::move(layers);
   pattern_view_->setGarment(garment_);
+  if (quilt_) pattern_view_->setQuiltCells(*quilt_);
   avatar_view_->setGarment(garment_);
   classifier_model_->setClassifications({}, {});
   clearArrangement();

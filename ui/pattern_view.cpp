@@ -12,6 +12,8 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/pattern/region_transfer.h"
+#include "engine/seeding/scene.h"
 #include "ui/colour_legend.h"
 #include "ui/pattern_layout.h"
 #include "ui/piece_drag.h"
@@ -67,6 +69,7 @@ PatternView::PatternView(QWidget* parent) : QGraphicsView(parent) {
 void PatternView::setGarment(std::shared_ptr<const Garment> garment) {
   scene()->clear();
   piece_items_.clear();
+  cell_items_.clear();
   label_items_.clear();
   label_candidates_.clear();
   pieces_rect_ = QRectF();
@@ -123,6 +126,33 @@ void PatternView::setGarment(std::shared_ptr<const Garment> garment) {
   scene()->setSceneRect(pieces_rect_.adjusted(-2.0, -2.0, 2.0, 2.0));
   framed_by_user_ = false;
   frameAll();
+}
+
+void PatternView::setQuiltCells(const RegionGarments& quilt) {
+  for (QGraphicsPolygonItem* item : cell_items_)
+    delete item;
+  cell_items_.clear();
+  if (!garment_ || quilt.region_garment != garment_) return;
+  // The regions' rest positions carried to the pieces as the arrangement's positions would be:
+  // each piece vertex lands at its place in its region's rest frame.
+  Eigen::MatrixX3d region_rest = Eigen::MatrixX3d::Zero(garment_->vertex_count(), 3);
+  region_rest.leftCols<2>() = garment_->rest_positions;
+  const Eigen::MatrixX3d cells =
+      transfer_region_positions(*quilt.pieces, *garment_, quilt.region_of_panel, region_rest);
+  QPen pen(QColor(60, 60, 60, 160), 0.8, Qt::DotLine);
+  pen.setCosmetic(true);
+  for (std::size_t p = 0; p < quilt.pieces->pieces.size(); ++p) {
+    const int region = quilt.region_of_panel[p];
+    QPolygonF outline;
+    for (int vertex : quilt.pieces->pieces[p].outline) {
+      const Eigen::Vector2d point = cells.row(vertex).head<2>().transpose() + offsets_[region];
+      outline << QPointF(point.x(), -point.y());  // scene y points down
+    }
+    // A child of its region's outline: drawn over its fill, and no piece of its own to click.
+    auto* item = new QGraphicsPolygonItem(outline, piece_items_[region]);
+    item->setPen(pen);
+    cell_items_.push_back(item);
+  }
 }
 
 QPointF PatternView::labelAnchor(int piece_index, const QPointF& near) const {

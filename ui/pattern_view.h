@@ -9,6 +9,7 @@
 // another or the legend or runs off the view; a label with no such place is hidden (the piece's
 // tooltip still names it).
 
+#include <QGraphicsPolygonItem>
 #include <QGraphicsView>
 #include <QList>
 #include <memory>
@@ -16,6 +17,10 @@
 
 #include "engine/pattern/garment_mesh.h"
 #include "ui/piece_state.h"
+
+namespace garment {
+struct RegionGarments;  // seeding/scene.h
+}
 
 class QGraphicsPolygonItem;
 class QGraphicsSimpleTextItem;
@@ -46,6 +51,14 @@ class PatternView : public QGraphicsView {
   QRectF labelRect(int piece) const;
   // Stitches drawn for the current selection.
   int sewingHighlightCount() const { return sewing_highlight_count_; }
+  // A quilt shown as its regions (the garment shown is quilt.region_garment): each of its pieces'
+  // outlines drawn thin inside its region, where the quilting cut the cloth. setGarment clears
+  // them.
+  void setQuiltCells(const RegionGarments& quilt);
+  // The cells drawn, one polygon per piece of the quilt, in scene coordinates.
+  const std::vector<QGraphicsPolygonItem*>& quiltCells() const { return cell_items_; }
+  // The outline drawn for a piece of the garment shown, in scene coordinates.
+  QPolygonF pieceOutline(int piece) const { return piece_items_[piece]->polygon(); }
   ColourLegend* legend() const { return legend_; }
 
  public slots:
@@ -82,6 +95,7 @@ class PatternView : public QGraphicsView {
   std::vector<PieceState> states_;
   QList<int> selected_;
   std::vector<QGraphicsItem*> sewing_items_;
+  std::vector<QGraphicsPolygonItem*> cell_items_;  // children of their regions' items
   int sewing_highlight_count_ = 0;
   ColourLegend* legend_ = nullptr;
   QPoint press_position_;

@@ -2,7 +2,8 @@
 // (shirt front and back halves, tuning half, made for f_smpl_average_A40) quilted at 10 cm into 69
 // pieces, opened from a file.
 // - The window shows and arranges the two regions its cells make (front and back), and its title
-//   says so; the session's scene is that garment.
+//   says so; the session's scene is that garment. The pattern view draws the 69 cells inside
+//   their regions, covering each region's area.
 // - Run to the end, the verdict is the pieces' (clean, as the command line's test finds it).
 // - The exports are of the 69 pieces: the OBJ reads back as the quilt's own garment with every cut
 //   closed (the two sides of each stitch sewn flat at the same point), and the report lists 69
@@ -22,9 +23,25 @@
 #include "tests/support/test_paths.h"
 #include "tests/ui/studio_harness.h"
 #include "tests/ui/ui_test_support.h"
+#include "ui/pattern_view.h"
 #include "ui/session_thread.h"
 
 using namespace garment;
+
+namespace {
+
+// The shoelace area of a closed polygon, m² for scene coordinates.
+double polygon_area(const QPolygonF& polygon) {
+  double twice = 0.0;
+  for (qsizetype i = 0; i < polygon.size(); ++i) {
+    const QPointF& a = polygon[i];
+    const QPointF& b = polygon[(i + 1) % polygon.size()];
+    twice += a.x() * b.y() - b.x() * a.y();
+  }
+  return std::abs(twice) / 2.0;
+}
+
+}  // namespace
 
 class StudioQuiltTest : public QObject, test::StudioHarness {
   Q_OBJECT
@@ -61,6 +78,25 @@ class StudioQuiltTest : public QObject, test::StudioHarness {
     QVERIFY2(window_->windowTitle().contains("69 pieces sewn flat into 2 regions"),
              qPrintable(window_->windowTitle()));
     QCOMPARE(state().scene->garment, window_->garment());
+    // The pattern view draws the 69 cells inside the 2 regions: each inside its region's outline
+    // (to 1 mm), and the cells of a region covering its area (to 1 %).
+    const ui::PatternView& view = *window_->patternView();
+    QCOMPARE(view.quiltCells().size(), std::size_t(69));
+    std::vector<double> cell_area(2, 0.0);
+    for (std::size_t p = 0; p < 69; ++p) {
+      const int region = quilt.region_of_panel[p];
+      const QPolygonF cell = view.quiltCells()[p]->polygon();
+      const QRectF bounds =
+          view.pieceOutline(region).boundingRect().adjusted(-1e-3, -1e-3, 1e-3, 1e-3);
+      for (const QPointF& point : cell)
+        QVERIFY2(bounds.contains(point), quilt.pieces->pieces[p].name.c_str());
+      cell_area[static_cast<std::size_t>(region)] += polygon_area(cell);
+    }
+    for (int region = 0; region < 2; ++region) {
+      const double area = polygon_area(view.pieceOutline(region));
+      QVERIFY2(std::abs(cell_area[static_cast<std::size_t>(region)] - area) < 0.01 * area,
+               qPrintable(QString("cells %1 m², region %2 m²").arg(cell_area[region]).arg(area)));
+    }
 
     window_->sessionActions().run_pause->trigger();
     QVERIFY(waitFor([](const ui::SessionState& s) { return s.done && s.verdict; }, 600000));
