@@ -97,6 +97,10 @@ struct ArrangementParameters {
   // not past post_process_work of the session (the work bound): most garments settle clean within
   // the first 300, and only the near misses pay for the longer settle.
   int post_process_extra_iterations = 600;
+  // And stop sooner when the last round's pace would not bring the strain and the seam gaps under
+  // their limits in the rounds left (post_process.cpp): failing garments spent all six rounds,
+  // the post-process's iterations being the pipeline's dearest (an LDLT solve each).
+  bool post_process_paced_settle = true;
   double post_process_step = 0.004;
   // "Strong sewing" and "greater repulsion strength" (§4), measured on 19 GarmentCode patterns
   // (bench_pipeline): 10× sewing and 3× repulsion over-tightened gathered seams and crushed
